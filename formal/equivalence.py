@@ -2,6 +2,7 @@
 
     python -m formal.equivalence --unit dda_arc OLD.v NEW.v
     git show BASE:gen/dda_arc.v > old.v && python -m formal.equivalence --unit dda_arc old.v gen/dda_arc.v
+    python -m formal.equivalence --unit regs_fifo old.v new.v --pair pulse_out0_level_x=pulse_out0_axis_x_level
 
 Both files define the module ``--unit``; the new one is renamed
 ``<unit>_new`` as it is read.  The miter instantiates both with the same
@@ -16,7 +17,8 @@ state, whatever it is, registers without a reset included) and asserted
 equal, with the outputs, in every clock after the reset.  For a
 refactoring that keeps its registers a k-induction then closes: at k = 1
 when every register is paired, at k = 2 when some register of one
-version is reloaded in every clock.  Proved, the claim is: from any
+version is reloaded in every clock.  A register the change renamed is
+paired with ``--pair OLD=NEW`` (the new version's ``NEW`` is read as ``OLD``).  Proved, the claim is: from any
 common power-up state and for every input sequence, the two versions
 give the same outputs clock for clock after a reset.  ``--outputs-only``
 drops the correspondence: the copies power up independently and only the
@@ -104,11 +106,14 @@ class Verdict:
         return f"not proved: sby ended {self.status}"
 
 
-def read_script(unit, old_name, new_name, match_registers):
-    """yosys commands reading both versions (the new one renamed), and the
+def read_script(unit, old_name, new_name, match_registers, pairs=()):
+    """yosys commands reading both versions (the new one renamed, its
+    registers of ``pairs``, (old, new) names, given the old names), and the
     shared registers made ports when ``match_registers``."""
-    script = [f"read_verilog -formal {new_name}", f"rename {unit} {unit}_new",
-              f"read_verilog -formal {old_name}", "prep"]
+    script = [f"read_verilog -formal {new_name}", f"rename {unit} {unit}_new"]
+    if pairs:
+        script += [f"cd {unit}_new"] + [f"rename {new} {old}" for old, new in pairs] + ["cd"]
+    script += [f"read_verilog -formal {old_name}", "prep"]
     if match_registers:
         # memories become registers, one a word, so that their words are paired too; each
         # paired register R becomes an output R (its value) and an input R.i (what its
@@ -122,15 +127,15 @@ def module_ports(json_file, module):
     return [Port(name, port["direction"], len(port["bits"])) for name, port in ports.items()]
 
 
-def plan_ports(work, unit, old_name, new_name, match_registers):
+def plan_ports(work, unit, old_name, new_name, match_registers, pairs=()):
     """(inputs, outputs, registers, paired) of the miter: the two versions'
     ports must agree; ``registers`` are the registers made ports that both
-    have (same width), ``paired`` every register whose readers were cut
-    from it in both (those and the output ports that are registers)."""
-    script = read_script(unit, old_name, new_name, False)
+    have (same width, ``pairs`` renamed), ``paired`` every register whose
+    readers were cut from it in both (those and the output ports that are registers)."""
+    script = read_script(unit, old_name, new_name, False, pairs)
     script.append("write_json before.json")
     if match_registers:
-        script += read_script(unit, old_name, new_name, True)[-2:] + ["write_json after.json"]
+        script += read_script(unit, old_name, new_name, True, pairs)[-2:] + ["write_json after.json"]
     yosys("; ".join(script), work)
     old, new = module_ports(work / "before.json", unit), module_ports(work / "before.json", f"{unit}_new")
     if {(p.name, p.direction, p.width) for p in old} != {(p.name, p.direction, p.width) for p in new}:
@@ -196,8 +201,12 @@ def miter_text(unit, inputs, outputs, registers, paired=(), reset="reset", reset
 
 
 def check(unit, old_file, new_file, mode="prove", depth=4, work=None, match_registers=True,
-          reset="reset", reset_active=0, timeout=3600):
-    """Prove ``new_file`` equivalent to ``old_file`` (module ``unit`` in both); a ``Verdict``."""
+          reset="reset", reset_active=0, timeout=3600, pairs=()):
+    """Prove ``new_file`` equivalent to ``old_file`` (module ``unit`` in both); a ``Verdict``.
+    ``pairs``: (old, new) names of registers the change renamed, paired as one."""
+    for name in (name for pair in pairs for name in pair):
+        if not IDENTIFIER.match(name):
+            raise ValueError(f"--pair: {name!r} is not a Verilog name")
     texts = [Path(source).read_text() for source in (old_file, new_file)]
     for source, text in zip((old_file, new_file), texts):
         if not re.search(rf"^\s*module\s+{re.escape(unit)}\b", text, re.MULTILINE):
@@ -212,11 +221,11 @@ def check(unit, old_file, new_file, mode="prove", depth=4, work=None, match_regi
     old_name, new_name = f"{unit}_old.v", f"{unit}_new.v"
     for name, text in zip((old_name, new_name), texts):
         (work / name).write_text(text)
-    inputs, outputs, registers, paired = plan_ports(work, unit, old_name, new_name, match_registers)
+    inputs, outputs, registers, paired = plan_ports(work, unit, old_name, new_name, match_registers, pairs)
     miter = work / "equivalence_miter.sv"
     miter.write_text(miter_text(unit, inputs, outputs, registers, paired, reset, reset_active))
     task = Task(name=f"{unit}_{mode}", mode=mode, depth=depth, top="equivalence_miter", sources=[],
-                script=read_script(unit, old_name, new_name, match_registers)
+                script=read_script(unit, old_name, new_name, match_registers, pairs)
                 + [f"read_verilog -formal -sv {miter.name}", "prep -top equivalence_miter",
                    # one netlist: what the two versions compute alike from the same registers merges
                    "flatten", "opt -fast -keepdc"],
@@ -244,6 +253,9 @@ def main(argv=None):
                         help="k of the induction, or the clocks of the bounded check (default 4)")
     parser.add_argument("--outputs-only", action="store_true",
                         help="compare the outputs only, from independent states (no register correspondence)")
+    parser.add_argument("--pair", action="append", default=[], metavar="OLD=NEW",
+                        help="the new version's register NEW is the old one's OLD (renamed by the change); "
+                             "repeat for each")
     parser.add_argument("--reset", default="reset", help="the reset input, held in the first clock (default reset)")
     parser.add_argument("--reset-active", type=int, choices=(0, 1), default=0,
                         help="the reset's active level (default 0: the card's RST#)")
@@ -252,6 +264,9 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.depth < 1:
         parser.error("argument --depth: must be at least 1")
+    pairs = [tuple(pair.split("=")) for pair in args.pair]
+    if any(len(pair) != 2 for pair in pairs):
+        parser.error("argument --pair: OLD=NEW, two register names")
     for path in (args.old, args.new):
         if not path.is_file():
             parser.error(f"{path}: no such file")
@@ -261,7 +276,7 @@ def main(argv=None):
     try:
         verdict = check(args.unit, args.old, args.new, mode=args.mode, depth=args.depth, work=args.work,
                         match_registers=not args.outputs_only, reset=args.reset,
-                        reset_active=args.reset_active, timeout=args.timeout)
+                        reset_active=args.reset_active, timeout=args.timeout, pairs=pairs)
     except (ValueError, RuntimeError) as error:
         parser.exit(2, f"{parser.prog}: error: {error}\n")
     engine = "smtbmc yices " + ("k-induction" if args.mode == "prove" else "bmc")

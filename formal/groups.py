@@ -167,9 +167,9 @@ MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_v
                      "machine_guard0_guard_reason", "machine_guard0_guard_limits", "feed_rate0_rate",
                      "homing0_state", "homing0_axis", "homing0_refused", "homing0_not_found", "home_zero",
                      "requests_step_x", "requests_step_y", "requests_dir_x", "requests_dir_y",
-                     "pulse_out0_request_step_x", "pulse_out0_request_step_y",
-                     "ramp_step", "machine_control", "feed_held", "step_mode", "pulse_out0_pulse_x",
-                     "pulse_out0_pulse_y",
+                     "machine_guard0_grant_x_granted_step", "machine_guard0_grant_y_granted_step",
+                     "ramp_step", "machine_control", "feed_held", "step_mode", "pulse_out0_axis_x_pulse",
+                     "pulse_out0_axis_y_pulse",
                      "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "direct_pulse0_pending", "direct_pulse1_pending", "watchdog_left")
 MACHINE = dict(expose=MACHINE_REGISTERS, generated=REGS_TABLES)

@@ -44,7 +44,7 @@ module card (
 // The paper's figure 1 in the FPGA, PCI lines still split in / out / enable.
 // 
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
-// (``PciBus``), ``pins`` (``MotorPins``).  Parameters
+// (``PciBus``), ``pins`` (``MotorPins`` of the build's ``axes``).  Parameters
 // (``models/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
 // ``variants``, ``device`` (the PCI target's one-LUT paths: plain logic or
 // iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
@@ -267,7 +267,6 @@ reg [3:0] card_core0_regs_fifo1_set_index;
 reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
-reg [1:0] card_core0_regs_fifo1_home_zero;
 reg [1:0] card_core0_regs_fifo1_step_mode;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
@@ -285,10 +284,11 @@ wire card_core0_regs_fifo1_fifo_empty;
 wire card_core0_regs_fifo1_fifo_flush;
 wire card_core0_regs_fifo1_fifo_full;
 wire [9:0] card_core0_regs_fifo1_fifo_level;
-reg card_core0_regs_fifo1_halt;
+wire card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
 reg card_core0_regs_fifo1_home_idle;
 reg [1:0] card_core0_regs_fifo1_home_inputs;
+reg [1:0] card_core0_regs_fifo1_home_zero;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
@@ -305,6 +305,7 @@ reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_read_waited;
 reg [31:0] card_core0_regs_fifo1_read_word;
 reg card_core0_regs_fifo1_releasing;
+wire [1:0] card_core0_regs_fifo1_requested;
 reg card_core0_regs_fifo1_requested_before;
 wire card_core0_regs_fifo1_seq_busy;
 reg card_core0_regs_fifo1_sequencer_clear;
@@ -329,15 +330,15 @@ reg [15:0] card_core0_regs_fifo1_ramp_step;
 reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_home_cut;
 reg card_core0_regs_fifo1_guard_stop_event;
-wire card_core0_regs_fifo1_requests_step_x;
-wire card_core0_regs_fifo1_requests_step_y;
 reg signed [31:0] card_core0_regs_fifo1_position_y;
 wire card_core0_regs_fifo1_direct_busy_x;
 wire card_core0_regs_fifo1_direct_busy_y;
 wire card_core0_regs_fifo1_dda_advance;
 wire card_core0_regs_fifo1_dda_busy;
+wire card_core0_regs_fifo1_requests_step_x;
 reg card_core0_regs_fifo1_steps_step_x;
 reg card_core0_regs_fifo1_direct_request_x;
+wire card_core0_regs_fifo1_requests_step_y;
 reg card_core0_regs_fifo1_steps_step_y;
 reg card_core0_regs_fifo1_direct_request_y;
 wire card_core0_regs_fifo1_requests_dir_x;
@@ -812,38 +813,42 @@ reg card_core0_regs_fifo1_direct_pulse3_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
-reg signed [31:0] card_core0_regs_fifo1_pulse_out1_delta_x;
-reg signed [31:0] card_core0_regs_fifo1_pulse_out1_delta_y;
-reg card_core0_regs_fifo1_pulse_out1_dir_level_x;
-reg card_core0_regs_fifo1_pulse_out1_dir_level_y;
 wire [1:0] card_core0_regs_fifo1_pulse_out1_free_slot;
 wire [3:0] card_core0_regs_fifo1_pulse_out1_head;
 reg card_core0_regs_fifo1_pulse_out1_high_ends;
 wire [1:0] card_core0_regs_fifo1_pulse_out1_last_slot;
-reg card_core0_regs_fifo1_pulse_out1_level_x;
-reg card_core0_regs_fifo1_pulse_out1_level_y;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_levels;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_low_clocks;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_low_step;
 reg [1:0] card_core0_regs_fifo1_pulse_out1_phase;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_clocks;
 reg [7:0] card_core0_regs_fifo1_pulse_out1_phase_step;
-reg card_core0_regs_fifo1_pulse_out1_pulse_x;
-reg card_core0_regs_fifo1_pulse_out1_pulse_y;
-reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_next_x;
-reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_next_y;
-reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_x;
-reg [1:0] card_core0_regs_fifo1_pulse_out1_quad_y;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_pulses;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_request_dirs;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_request_steps;
+reg card_core0_regs_fifo1_pulse_out1_set_dir;
 reg card_core0_regs_fifo1_pulse_out1_starts;
 reg card_core0_regs_fifo1_pulse_out1_take;
 reg card_core0_regs_fifo1_pulse_out1_turn;
-reg card_core0_regs_fifo1_pulse_out1_up_x;
-reg card_core0_regs_fifo1_pulse_out1_up_y;
+wire [1:0] card_core0_regs_fifo1_pulse_out1_turns;
 wire card_core0_regs_fifo1_pulse_out1_control_pulsing;
-reg card_core0_regs_fifo1_pulse_out1_request_step_x;
-reg card_core0_regs_fifo1_pulse_out1_request_step_y;
-reg card_core0_regs_fifo1_pulse_out1_request_dir_y;
-reg card_core0_regs_fifo1_pulse_out1_request_dir_x;
-reg signed [31:0] card_core0_regs_fifo1_pulse_out1_position_x;
+wire card_core0_regs_fifo1_pulse_out1_axis_x_turns;
+reg card_core0_regs_fifo1_pulse_out1_axis_x_level;
+reg card_core0_regs_fifo1_pulse_out1_axis_x_pulse;
+reg signed [31:0] card_core0_regs_fifo1_pulse_out1_axis_x_position;
+reg signed [31:0] card_core0_regs_fifo1_pulse_out1_axis_x_delta;
+reg card_core0_regs_fifo1_pulse_out1_axis_x_dir_level;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_axis_x_quad;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_axis_x_quad_next;
+reg card_core0_regs_fifo1_pulse_out1_axis_x_up;
+wire card_core0_regs_fifo1_pulse_out1_axis_y_turns;
+reg card_core0_regs_fifo1_pulse_out1_axis_y_level;
+reg card_core0_regs_fifo1_pulse_out1_axis_y_pulse;
+reg signed [31:0] card_core0_regs_fifo1_pulse_out1_axis_y_delta;
+reg card_core0_regs_fifo1_pulse_out1_axis_y_dir_level;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_axis_y_quad;
+reg [1:0] card_core0_regs_fifo1_pulse_out1_axis_y_quad_next;
+reg card_core0_regs_fifo1_pulse_out1_axis_y_up;
 wire [6:0] card_core0_regs_fifo1_input_filter1_level;
 reg [15:0] card_core0_regs_fifo1_input_filter1_prescale;
 wire card_core0_regs_fifo1_input_filter1_sample;
@@ -869,8 +874,13 @@ wire card_core0_regs_fifo1_input_filter1__input_count13_taken;
 wire card_core0_regs_fifo1_machine_guard1_estop;
 wire card_core0_regs_fifo1_machine_guard1_expired;
 wire [3:0] card_core0_regs_fifo1_machine_guard1_hits;
+wire card_core0_regs_fifo1_machine_guard1_passes;
 reg [1:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
 reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
+wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_step;
+wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_dir;
+wire card_core0_regs_fifo1_machine_guard1_grant_y_granted_step;
+wire card_core0_regs_fifo1_machine_guard1_grant_y_granted_dir;
 reg [23:0] card_core0_regs_fifo1_homing1_addend;
 reg card_core0_regs_fifo1_homing1_axis;
 reg card_core0_regs_fifo1_homing1_done;
@@ -1097,6 +1107,18 @@ assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
+assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
+assign card_core0_regs_fifo1_requested[0] = card_core0_regs_fifo1_requests_step_x;
+assign card_core0_regs_fifo1_pulse_out1_levels[1] = card_core0_regs_fifo1_pulse_out1_axis_y_level;
+assign card_core0_regs_fifo1_pulse_out1_levels[0] = card_core0_regs_fifo1_pulse_out1_axis_x_level;
+assign card_core0_regs_fifo1_pulse_out1_pulses[1] = card_core0_regs_fifo1_pulse_out1_axis_y_pulse;
+assign card_core0_regs_fifo1_pulse_out1_pulses[0] = card_core0_regs_fifo1_pulse_out1_axis_x_pulse;
+assign card_core0_regs_fifo1_pulse_out1_request_dirs[1] = card_core0_regs_fifo1_machine_guard1_grant_y_granted_dir;
+assign card_core0_regs_fifo1_pulse_out1_request_dirs[0] = card_core0_regs_fifo1_machine_guard1_grant_x_granted_dir;
+assign card_core0_regs_fifo1_pulse_out1_request_steps[1] = card_core0_regs_fifo1_machine_guard1_grant_y_granted_step;
+assign card_core0_regs_fifo1_pulse_out1_request_steps[0] = card_core0_regs_fifo1_machine_guard1_grant_x_granted_step;
+assign card_core0_regs_fifo1_pulse_out1_turns[1] = card_core0_regs_fifo1_pulse_out1_axis_y_turns;
+assign card_core0_regs_fifo1_pulse_out1_turns[0] = card_core0_regs_fifo1_pulse_out1_axis_x_turns;
 assign card_core0_regs_fifo1_input_filter1_taken[6] = card_core0_regs_fifo1_input_filter1__input_count13_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[5] = card_core0_regs_fifo1_input_filter1__input_count12_taken;
 assign card_core0_regs_fifo1_input_filter1_taken[4] = card_core0_regs_fifo1_input_filter1__input_count11_taken;
@@ -5239,24 +5261,212 @@ end
 
 
 
+assign card_core0_regs_fifo1_pulse_out1_axis_x_turns = (card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_axis_x_dir_level));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_x_step_level
+    if (reset == 0) begin
+        card_core0_regs_fifo1_pulse_out1_axis_x_level <= 0;
+        card_core0_regs_fifo1_pulse_out1_axis_x_dir_level <= 1;
+    end
+    else begin
+        if (card_core0_regs_fifo1_pulse_out1_high_ends) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_level <= 0;
+        end
+        else if (card_core0_regs_fifo1_pulse_out1_take) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_level <= card_core0_regs_fifo1_pulse_out1_head[0];
+        end
+        if ((card_core0_regs_fifo1_pulse_out1_set_dir && card_core0_regs_fifo1_pulse_out1_head[0])) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_dir_level <= card_core0_regs_fifo1_pulse_out1_head[2];
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_pulse_out1_axis_x_dir_level) begin: card_core0_regs_fifo1_pulse_out1_axis_x_step_sense
+    card_core0_regs_fifo1_pulse_out1_axis_x_delta = 1;
+    if ((!card_core0_regs_fifo1_pulse_out1_axis_x_dir_level)) begin
+        card_core0_regs_fifo1_pulse_out1_axis_x_delta = (-1);
+    end
+end
+
+
+always @(card_core0_regs_fifo1_pulse_out1_axis_x_level, card_core0_regs_fifo1_reg_word55_shown[0], card_core0_regs_fifo1_pulse_out1_axis_x_dir_level, card_core0_regs_fifo1_pulse_out1_axis_x_quad, card_core0_regs_fifo1_pulse_out1_axis_x_pulse) begin: card_core0_regs_fifo1_pulse_out1_axis_x_pin_direction
+    card_core0_regs_fifo1_pulse_out1_axis_x_up = (card_core0_regs_fifo1_pulse_out1_axis_x_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[0]);
+    card_core0_regs_fifo1_pulse_out1_axis_x_quad_next = card_core0_regs_fifo1_pulse_out1_axis_x_quad;
+    if ((card_core0_regs_fifo1_pulse_out1_axis_x_level && (!card_core0_regs_fifo1_pulse_out1_axis_x_pulse))) begin
+        if ((card_core0_regs_fifo1_pulse_out1_axis_x_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[0])) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_quad_next = (card_core0_regs_fifo1_pulse_out1_axis_x_quad + 1);
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_quad_next = (card_core0_regs_fifo1_pulse_out1_axis_x_quad - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_x_drive_pins
+    if (reset == 0) begin
+        pins_dir_x <= 0;
+        pins_step_x <= 0;
+        card_core0_regs_fifo1_pulse_out1_axis_x_pulse <= 0;
+        card_core0_regs_fifo1_pulse_out1_axis_x_quad <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_pulse_out1_axis_x_pulse <= card_core0_regs_fifo1_pulse_out1_axis_x_level;
+        card_core0_regs_fifo1_pulse_out1_axis_x_quad <= card_core0_regs_fifo1_pulse_out1_axis_x_quad_next;
+        case (card_core0_regs_fifo1_step_mode)
+            'h1: begin
+                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_axis_x_level && card_core0_regs_fifo1_pulse_out1_axis_x_up);
+                pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_axis_x_level && (!card_core0_regs_fifo1_pulse_out1_axis_x_up));
+            end
+            'h2: begin
+                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_axis_x_quad_next[0] ^ card_core0_regs_fifo1_pulse_out1_axis_x_quad_next[1]);
+                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_axis_x_quad_next[1];
+            end
+            default: begin
+                pins_step_x <= card_core0_regs_fifo1_pulse_out1_axis_x_level;
+                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_axis_x_up;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_x_count_position
+    if (reset == 0) begin
+        card_core0_regs_fifo1_pulse_out1_axis_x_position <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_clear_position) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_position <= 0;
+        end
+        else if (card_core0_regs_fifo1_home_zero[0]) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_position <= 0;
+            if ((card_core0_regs_fifo1_pulse_out1_axis_x_level && (!card_core0_regs_fifo1_pulse_out1_axis_x_pulse))) begin
+                card_core0_regs_fifo1_pulse_out1_axis_x_position <= card_core0_regs_fifo1_pulse_out1_axis_x_delta;
+            end
+        end
+        else if ((card_core0_regs_fifo1_pulse_out1_axis_x_level && (!card_core0_regs_fifo1_pulse_out1_axis_x_pulse))) begin
+            card_core0_regs_fifo1_pulse_out1_axis_x_position <= (card_core0_regs_fifo1_pulse_out1_axis_x_position + card_core0_regs_fifo1_pulse_out1_axis_x_delta);
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_pulse_out1_axis_y_turns = (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_axis_y_dir_level));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_y_step_level
+    if (reset == 0) begin
+        card_core0_regs_fifo1_pulse_out1_axis_y_level <= 0;
+        card_core0_regs_fifo1_pulse_out1_axis_y_dir_level <= 1;
+    end
+    else begin
+        if (card_core0_regs_fifo1_pulse_out1_high_ends) begin
+            card_core0_regs_fifo1_pulse_out1_axis_y_level <= 0;
+        end
+        else if (card_core0_regs_fifo1_pulse_out1_take) begin
+            card_core0_regs_fifo1_pulse_out1_axis_y_level <= card_core0_regs_fifo1_pulse_out1_head[1];
+        end
+        if ((card_core0_regs_fifo1_pulse_out1_set_dir && card_core0_regs_fifo1_pulse_out1_head[1])) begin
+            card_core0_regs_fifo1_pulse_out1_axis_y_dir_level <= card_core0_regs_fifo1_pulse_out1_head[3];
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_pulse_out1_axis_y_dir_level) begin: card_core0_regs_fifo1_pulse_out1_axis_y_step_sense
+    card_core0_regs_fifo1_pulse_out1_axis_y_delta = 1;
+    if ((!card_core0_regs_fifo1_pulse_out1_axis_y_dir_level)) begin
+        card_core0_regs_fifo1_pulse_out1_axis_y_delta = (-1);
+    end
+end
+
+
+always @(card_core0_regs_fifo1_pulse_out1_axis_y_level, card_core0_regs_fifo1_reg_word55_shown[1], card_core0_regs_fifo1_pulse_out1_axis_y_dir_level, card_core0_regs_fifo1_pulse_out1_axis_y_quad, card_core0_regs_fifo1_pulse_out1_axis_y_pulse) begin: card_core0_regs_fifo1_pulse_out1_axis_y_pin_direction
+    card_core0_regs_fifo1_pulse_out1_axis_y_up = (card_core0_regs_fifo1_pulse_out1_axis_y_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[1]);
+    card_core0_regs_fifo1_pulse_out1_axis_y_quad_next = card_core0_regs_fifo1_pulse_out1_axis_y_quad;
+    if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
+        if ((card_core0_regs_fifo1_pulse_out1_axis_y_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[1])) begin
+            card_core0_regs_fifo1_pulse_out1_axis_y_quad_next = (card_core0_regs_fifo1_pulse_out1_axis_y_quad + 1);
+        end
+        else begin
+            card_core0_regs_fifo1_pulse_out1_axis_y_quad_next = (card_core0_regs_fifo1_pulse_out1_axis_y_quad - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_y_drive_pins
+    if (reset == 0) begin
+        pins_dir_y <= 0;
+        pins_step_y <= 0;
+        card_core0_regs_fifo1_pulse_out1_axis_y_pulse <= 0;
+        card_core0_regs_fifo1_pulse_out1_axis_y_quad <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_pulse_out1_axis_y_pulse <= card_core0_regs_fifo1_pulse_out1_axis_y_level;
+        card_core0_regs_fifo1_pulse_out1_axis_y_quad <= card_core0_regs_fifo1_pulse_out1_axis_y_quad_next;
+        case (card_core0_regs_fifo1_step_mode)
+            'h1: begin
+                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_axis_y_level && card_core0_regs_fifo1_pulse_out1_axis_y_up);
+                pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_up));
+            end
+            'h2: begin
+                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_axis_y_quad_next[0] ^ card_core0_regs_fifo1_pulse_out1_axis_y_quad_next[1]);
+                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_axis_y_quad_next[1];
+            end
+            default: begin
+                pins_step_y <= card_core0_regs_fifo1_pulse_out1_axis_y_level;
+                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_axis_y_up;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_y_count_position
+    if (reset == 0) begin
+        card_core0_regs_fifo1_position_y <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_clear_position) begin
+            card_core0_regs_fifo1_position_y <= 0;
+        end
+        else if (card_core0_regs_fifo1_home_zero[1]) begin
+            card_core0_regs_fifo1_position_y <= 0;
+            if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
+                card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_axis_y_delta;
+            end
+        end
+        else if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
+            card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_axis_y_delta);
+        end
+    end
+end
+
+
+
 assign card_core0_regs_fifo1_out_ready = ($signed({1'b0, card_core0_regs_fifo1_pulse_out1_count}) <= (4 - 2));
-assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || card_core0_regs_fifo1_pulse_out1_pulse_x || card_core0_regs_fifo1_pulse_out1_pulse_y);
-assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || card_core0_regs_fifo1_pulse_out1_level_x || card_core0_regs_fifo1_pulse_out1_level_y || card_core0_regs_fifo1_pulse_out1_pulse_x || card_core0_regs_fifo1_pulse_out1_pulse_y);
+assign card_core0_regs_fifo1_out_active = ((card_core0_regs_fifo1_pulse_out1_count != 0) || (card_core0_regs_fifo1_pulse_out1_phase != 2'b00) || (card_core0_regs_fifo1_pulse_out1_pulses != 0));
+assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1_pulse_out1_take || (card_core0_regs_fifo1_pulse_out1_levels != 0) || (card_core0_regs_fifo1_pulse_out1_pulses != 0));
 
 
 
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_head, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_reg_word53_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_clear) begin: card_core0_regs_fifo1_pulse_out1_decide
-    card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && ((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_reg_word53_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_turns) begin: card_core0_regs_fifo1_pulse_out1_decide
+    card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && (card_core0_regs_fifo1_pulse_out1_turns != 0));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
     if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word76_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
             card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word53_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (!((card_core0_regs_fifo1_pulse_out1_head[0] && (card_core0_regs_fifo1_pulse_out1_head[2] != card_core0_regs_fifo1_pulse_out1_dir_level_x)) || (card_core0_regs_fifo1_pulse_out1_head[1] && (card_core0_regs_fifo1_pulse_out1_head[3] != card_core0_regs_fifo1_pulse_out1_dir_level_y))));
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_turns == 0);
         end
     end
 end
@@ -5265,6 +5475,7 @@ end
 always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word52_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word54_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
     card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word54_shown)));
     card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word52_shown));
+    card_core0_regs_fifo1_pulse_out1_set_dir = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word54_shown) && (!card_core0_regs_fifo1_pulse_out1_take));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -5300,35 +5511,21 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_step_phases
     if (reset == 0) begin
-        card_core0_regs_fifo1_pulse_out1_level_y <= 0;
         card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
-        card_core0_regs_fifo1_pulse_out1_dir_level_x <= 1;
-        card_core0_regs_fifo1_pulse_out1_dir_level_y <= 1;
-        card_core0_regs_fifo1_pulse_out1_level_x <= 0;
     end
     else begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10)) begin
             if (card_core0_regs_fifo1_pulse_out1_high_ends) begin
-                card_core0_regs_fifo1_pulse_out1_level_x <= 0;
-                card_core0_regs_fifo1_pulse_out1_level_y <= 0;
                 card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
             end
         end
         else if (card_core0_regs_fifo1_pulse_out1_take) begin
-            card_core0_regs_fifo1_pulse_out1_level_x <= card_core0_regs_fifo1_pulse_out1_head[0];
-            card_core0_regs_fifo1_pulse_out1_level_y <= card_core0_regs_fifo1_pulse_out1_head[1];
             card_core0_regs_fifo1_pulse_out1_phase <= 2'b10;
         end
         else if (card_core0_regs_fifo1_pulse_clear) begin
             card_core0_regs_fifo1_pulse_out1_phase <= 2'b00;
         end
         else if (((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && card_core0_regs_fifo1_pulse_out1_starts)) begin
-            if (card_core0_regs_fifo1_pulse_out1_head[0]) begin
-                card_core0_regs_fifo1_pulse_out1_dir_level_x <= card_core0_regs_fifo1_pulse_out1_head[2];
-            end
-            if (card_core0_regs_fifo1_pulse_out1_head[1]) begin
-                card_core0_regs_fifo1_pulse_out1_dir_level_y <= card_core0_regs_fifo1_pulse_out1_head[3];
-            end
             card_core0_regs_fifo1_pulse_out1_phase <= 2'b01;
         end
     end
@@ -5347,8 +5544,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_f
         card_core0_regs_fifo1_pulse_out1_queue[3] <= 0;
     end
     else begin
-        pushed = (card_core0_regs_fifo1_pulse_out1_request_step_x || card_core0_regs_fifo1_pulse_out1_request_step_y);
-        entry = {card_core0_regs_fifo1_pulse_out1_request_dir_y, card_core0_regs_fifo1_pulse_out1_request_dir_x, card_core0_regs_fifo1_pulse_out1_request_step_y, card_core0_regs_fifo1_pulse_out1_request_step_x};
+        pushed = (card_core0_regs_fifo1_pulse_out1_request_steps != 0);
+        entry = {card_core0_regs_fifo1_pulse_out1_request_dirs, card_core0_regs_fifo1_pulse_out1_request_steps};
         if (card_core0_regs_fifo1_pulse_clear) begin
             card_core0_regs_fifo1_pulse_out1_count <= 0;
         end
@@ -5374,116 +5571,6 @@ end
 
 assign card_core0_regs_fifo1_pulse_out1_last_slot = (card_core0_regs_fifo1_pulse_out1_count[2-1:0] - 1);
 assign card_core0_regs_fifo1_pulse_out1_free_slot = card_core0_regs_fifo1_pulse_out1_count[2-1:0];
-
-
-always @(card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_dir_level_y) begin: card_core0_regs_fifo1_pulse_out1_step_sense
-    card_core0_regs_fifo1_pulse_out1_delta_x = 1;
-    if ((!card_core0_regs_fifo1_pulse_out1_dir_level_x)) begin
-        card_core0_regs_fifo1_pulse_out1_delta_x = (-1);
-    end
-    card_core0_regs_fifo1_pulse_out1_delta_y = 1;
-    if ((!card_core0_regs_fifo1_pulse_out1_dir_level_y)) begin
-        card_core0_regs_fifo1_pulse_out1_delta_y = (-1);
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word55_shown[1], card_core0_regs_fifo1_reg_word55_shown[0], card_core0_regs_fifo1_pulse_out1_level_y, card_core0_regs_fifo1_pulse_out1_dir_level_x, card_core0_regs_fifo1_pulse_out1_quad_x, card_core0_regs_fifo1_pulse_out1_dir_level_y, card_core0_regs_fifo1_pulse_out1_pulse_x, card_core0_regs_fifo1_pulse_out1_level_x, card_core0_regs_fifo1_pulse_out1_quad_y, card_core0_regs_fifo1_pulse_out1_pulse_y) begin: card_core0_regs_fifo1_pulse_out1_pin_direction
-    card_core0_regs_fifo1_pulse_out1_up_x = (card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word55_shown[0]);
-    card_core0_regs_fifo1_pulse_out1_up_y = (card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word55_shown[1]);
-    card_core0_regs_fifo1_pulse_out1_quad_next_x = card_core0_regs_fifo1_pulse_out1_quad_x;
-    if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
-        if ((card_core0_regs_fifo1_pulse_out1_dir_level_x ^ card_core0_regs_fifo1_reg_word55_shown[0])) begin
-            card_core0_regs_fifo1_pulse_out1_quad_next_x = (card_core0_regs_fifo1_pulse_out1_quad_x + 1);
-        end
-        else begin
-            card_core0_regs_fifo1_pulse_out1_quad_next_x = (card_core0_regs_fifo1_pulse_out1_quad_x - 1);
-        end
-    end
-    card_core0_regs_fifo1_pulse_out1_quad_next_y = card_core0_regs_fifo1_pulse_out1_quad_y;
-    if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
-        if ((card_core0_regs_fifo1_pulse_out1_dir_level_y ^ card_core0_regs_fifo1_reg_word55_shown[1])) begin
-            card_core0_regs_fifo1_pulse_out1_quad_next_y = (card_core0_regs_fifo1_pulse_out1_quad_y + 1);
-        end
-        else begin
-            card_core0_regs_fifo1_pulse_out1_quad_next_y = (card_core0_regs_fifo1_pulse_out1_quad_y - 1);
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_drive_pins
-    if (reset == 0) begin
-        pins_step_x <= 0;
-        pins_dir_x <= 0;
-        pins_dir_y <= 0;
-        card_core0_regs_fifo1_pulse_out1_quad_x <= 0;
-        card_core0_regs_fifo1_pulse_out1_pulse_x <= 0;
-        card_core0_regs_fifo1_pulse_out1_quad_y <= 0;
-        pins_step_y <= 0;
-        card_core0_regs_fifo1_pulse_out1_pulse_y <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_pulse_out1_pulse_x <= card_core0_regs_fifo1_pulse_out1_level_x;
-        card_core0_regs_fifo1_pulse_out1_pulse_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-        card_core0_regs_fifo1_pulse_out1_quad_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x;
-        card_core0_regs_fifo1_pulse_out1_quad_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y;
-        case (card_core0_regs_fifo1_step_mode)
-            'h1: begin
-                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_level_x && card_core0_regs_fifo1_pulse_out1_up_x);
-                pins_dir_x <= (card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_up_x));
-                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_level_y && card_core0_regs_fifo1_pulse_out1_up_y);
-                pins_dir_y <= (card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_up_y));
-            end
-            'h2: begin
-                pins_step_x <= (card_core0_regs_fifo1_pulse_out1_quad_next_x[0] ^ card_core0_regs_fifo1_pulse_out1_quad_next_x[1]);
-                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_quad_next_x[1];
-                pins_step_y <= (card_core0_regs_fifo1_pulse_out1_quad_next_y[0] ^ card_core0_regs_fifo1_pulse_out1_quad_next_y[1]);
-                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_quad_next_y[1];
-            end
-            default: begin
-                pins_step_x <= card_core0_regs_fifo1_pulse_out1_level_x;
-                pins_dir_x <= card_core0_regs_fifo1_pulse_out1_up_x;
-                pins_step_y <= card_core0_regs_fifo1_pulse_out1_level_y;
-                pins_dir_y <= card_core0_regs_fifo1_pulse_out1_up_y;
-            end
-        endcase
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_count_positions
-    if (reset == 0) begin
-        card_core0_regs_fifo1_position_y <= 0;
-        card_core0_regs_fifo1_pulse_out1_position_x <= 0;
-    end
-    else begin
-        if (card_core0_regs_fifo1_clear_position) begin
-            card_core0_regs_fifo1_pulse_out1_position_x <= 0;
-            card_core0_regs_fifo1_position_y <= 0;
-        end
-        else begin
-            if (card_core0_regs_fifo1_home_zero[0]) begin
-                card_core0_regs_fifo1_pulse_out1_position_x <= 0;
-                if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
-                    card_core0_regs_fifo1_pulse_out1_position_x <= card_core0_regs_fifo1_pulse_out1_delta_x;
-                end
-            end
-            else if ((card_core0_regs_fifo1_pulse_out1_level_x && (!card_core0_regs_fifo1_pulse_out1_pulse_x))) begin
-                card_core0_regs_fifo1_pulse_out1_position_x <= (card_core0_regs_fifo1_pulse_out1_position_x + card_core0_regs_fifo1_pulse_out1_delta_x);
-            end
-            if (card_core0_regs_fifo1_home_zero[1]) begin
-                card_core0_regs_fifo1_position_y <= 0;
-                if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
-                    card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_delta_y;
-                end
-            end
-            else if ((card_core0_regs_fifo1_pulse_out1_level_y && (!card_core0_regs_fifo1_pulse_out1_pulse_y))) begin
-                card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_delta_y);
-            end
-        end
-    end
-end
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_synchronise
@@ -5699,20 +5786,24 @@ assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_re
 
 
 
+assign card_core0_regs_fifo1_machine_guard1_grant_x_granted_step = (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_machine_guard1_passes);
+assign card_core0_regs_fifo1_machine_guard1_grant_x_granted_dir = card_core0_regs_fifo1_requests_dir_x;
+
+
+
+assign card_core0_regs_fifo1_machine_guard1_grant_y_granted_step = (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_machine_guard1_passes);
+assign card_core0_regs_fifo1_machine_guard1_grant_y_granted_dir = card_core0_regs_fifo1_requests_dir_y;
+
+
+
 assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
 assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word69__store48_word_strobe));
 assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
 
 
-always @(card_core0_regs_fifo1_machine_guard1_hits, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_requests_step_x, card_core0_regs_fifo1_requests_dir_y, card_core0_regs_fifo1_guard_ramp, card_core0_regs_fifo1_requests_step_y, card_core0_regs_fifo1_requests_dir_x, card_core0_regs_fifo1_machine_guard1_estop) begin: card_core0_regs_fifo1_machine_guard1_gate
-    reg passes;
-    card_core0_regs_fifo1_halt = (card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop);
-    passes = ((!(card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop)) && ((card_core0_regs_fifo1_machine_guard1_hits == 0) || card_core0_regs_fifo1_guard_ramp));
-    card_core0_regs_fifo1_pulse_out1_request_step_x = (card_core0_regs_fifo1_requests_step_x && passes);
-    card_core0_regs_fifo1_pulse_out1_request_step_y = (card_core0_regs_fifo1_requests_step_y && passes);
-    card_core0_regs_fifo1_pulse_out1_request_dir_x = card_core0_regs_fifo1_requests_dir_x;
-    card_core0_regs_fifo1_pulse_out1_request_dir_y = card_core0_regs_fifo1_requests_dir_y;
-end
+
+assign card_core0_regs_fifo1_halt = (card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop);
+assign card_core0_regs_fifo1_machine_guard1_passes = ((!(card_core0_regs_fifo1_guard_stopped || card_core0_regs_fifo1_machine_guard1_estop)) && ((card_core0_regs_fifo1_machine_guard1_hits == 0) || card_core0_regs_fifo1_guard_ramp));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guard1_latch
@@ -6091,7 +6182,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_befo
         card_core0_regs_fifo1_out_active_before <= 0;
     end
     else begin
-        card_core0_regs_fifo1_requested_before <= (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y);
+        card_core0_regs_fifo1_requested_before <= (card_core0_regs_fifo1_requested != 0);
         card_core0_regs_fifo1_out_active_before <= card_core0_regs_fifo1_out_active;
     end
 end
@@ -6111,7 +6202,7 @@ end
 
 
 assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y);
-assign card_core0_regs_fifo1_outputs_busy = (card_core0_regs_fifo1_requests_step_x || card_core0_regs_fifo1_requests_step_y || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
+assign card_core0_regs_fifo1_outputs_busy = ((card_core0_regs_fifo1_requested != 0) || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
 assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
@@ -6244,7 +6335,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown = card_core0_regs_fifo1_pulse_out1_position_x[32-1:0];
+assign card_core0_regs_fifo1_reg_word47_shown = card_core0_regs_fifo1_pulse_out1_axis_x_position[32-1:0];
 assign card_core0_regs_fifo1_reg_word48_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 

@@ -177,7 +177,6 @@ reg [3:0] set_index;
 reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
-reg [1:0] home_zero;
 reg [1:0] step_mode;
 reg [23:0] watchdog_left;
 wire any_busy;
@@ -195,10 +194,11 @@ wire fifo_empty;
 wire fifo_flush;
 wire fifo_full;
 wire [9:0] fifo_level;
-reg halt;
+wire halt;
 wire hold;
 reg home_idle;
 reg [1:0] home_inputs;
+reg [1:0] home_zero;
 reg io_read;
 reg io_write;
 reg io_written;
@@ -215,6 +215,7 @@ reg push;
 reg read_waited;
 reg [31:0] read_word;
 reg releasing;
+wire [1:0] requested;
 reg requested_before;
 wire seq_busy;
 reg sequencer_clear;
@@ -239,12 +240,12 @@ reg [15:0] ramp_step;
 reg feed_held;
 reg home_cut;
 reg guard_stop_event;
-wire requests_step_x;
-wire requests_step_y;
 reg signed [31:0] position_y;
 wire direct_busy_x;
 wire direct_busy_y;
+wire requests_step_x;
 reg direct_request_x;
+wire requests_step_y;
 reg direct_request_y;
 wire requests_dir_x;
 reg direct_dir_x;
@@ -701,38 +702,42 @@ reg direct_pulse1_command_retarget;
 reg signed [23:0] direct_pulse1_command_count;
 reg [15:0] direct_pulse1_command_period;
 reg [2:0] pulse_out0_count;
-reg signed [31:0] pulse_out0_delta_x;
-reg signed [31:0] pulse_out0_delta_y;
-reg pulse_out0_dir_level_x;
-reg pulse_out0_dir_level_y;
 wire [1:0] pulse_out0_free_slot;
 wire [3:0] pulse_out0_head;
 reg pulse_out0_high_ends;
 wire [1:0] pulse_out0_last_slot;
-reg pulse_out0_level_x;
-reg pulse_out0_level_y;
+wire [1:0] pulse_out0_levels;
 reg [7:0] pulse_out0_low_clocks;
 reg [7:0] pulse_out0_low_step;
 reg [1:0] pulse_out0_phase;
 reg [7:0] pulse_out0_phase_clocks;
 reg [7:0] pulse_out0_phase_step;
-reg pulse_out0_pulse_x;
-reg pulse_out0_pulse_y;
-reg [1:0] pulse_out0_quad_next_x;
-reg [1:0] pulse_out0_quad_next_y;
-reg [1:0] pulse_out0_quad_x;
-reg [1:0] pulse_out0_quad_y;
+wire [1:0] pulse_out0_pulses;
+wire [1:0] pulse_out0_request_dirs;
+wire [1:0] pulse_out0_request_steps;
+reg pulse_out0_set_dir;
 reg pulse_out0_starts;
 reg pulse_out0_take;
 reg pulse_out0_turn;
-reg pulse_out0_up_x;
-reg pulse_out0_up_y;
+wire [1:0] pulse_out0_turns;
 wire pulse_out0_control_pulsing;
-reg pulse_out0_request_step_x;
-reg pulse_out0_request_step_y;
-reg pulse_out0_request_dir_y;
-reg pulse_out0_request_dir_x;
-reg signed [31:0] pulse_out0_position_x;
+wire pulse_out0_axis_x_turns;
+reg pulse_out0_axis_x_level;
+reg pulse_out0_axis_x_pulse;
+reg signed [31:0] pulse_out0_axis_x_position;
+reg signed [31:0] pulse_out0_axis_x_delta;
+reg pulse_out0_axis_x_dir_level;
+reg [1:0] pulse_out0_axis_x_quad;
+reg [1:0] pulse_out0_axis_x_quad_next;
+reg pulse_out0_axis_x_up;
+wire pulse_out0_axis_y_turns;
+reg pulse_out0_axis_y_level;
+reg pulse_out0_axis_y_pulse;
+reg signed [31:0] pulse_out0_axis_y_delta;
+reg pulse_out0_axis_y_dir_level;
+reg [1:0] pulse_out0_axis_y_quad;
+reg [1:0] pulse_out0_axis_y_quad_next;
+reg pulse_out0_axis_y_up;
 wire [6:0] input_filter0_level;
 reg [15:0] input_filter0_prescale;
 wire input_filter0_sample;
@@ -758,8 +763,13 @@ wire input_filter0__input_count6_taken;
 wire machine_guard0_estop;
 wire machine_guard0_expired;
 wire [3:0] machine_guard0_hits;
+wire machine_guard0_passes;
 reg [1:0] machine_guard0_guard_reason;
 reg [3:0] machine_guard0_guard_limits;
+wire machine_guard0_grant_x_granted_step;
+wire machine_guard0_grant_x_granted_dir;
+wire machine_guard0_grant_y_granted_step;
+wire machine_guard0_grant_y_granted_dir;
 reg [23:0] homing0_addend;
 reg homing0_axis;
 reg homing0_done;
@@ -817,6 +827,18 @@ assign reg_word34_set_mine = 1'd0;
 assign reg_word35_set_mine = 1'd0;
 assign reg_word36_set_mine = 1'd0;
 assign reg_word38_set_mine = 1'd0;
+assign requested[1] = requests_step_y;
+assign requested[0] = requests_step_x;
+assign pulse_out0_levels[1] = pulse_out0_axis_y_level;
+assign pulse_out0_levels[0] = pulse_out0_axis_x_level;
+assign pulse_out0_pulses[1] = pulse_out0_axis_y_pulse;
+assign pulse_out0_pulses[0] = pulse_out0_axis_x_pulse;
+assign pulse_out0_request_dirs[1] = machine_guard0_grant_y_granted_dir;
+assign pulse_out0_request_dirs[0] = machine_guard0_grant_x_granted_dir;
+assign pulse_out0_request_steps[1] = machine_guard0_grant_y_granted_step;
+assign pulse_out0_request_steps[0] = machine_guard0_grant_x_granted_step;
+assign pulse_out0_turns[1] = pulse_out0_axis_y_turns;
+assign pulse_out0_turns[0] = pulse_out0_axis_x_turns;
 assign input_filter0_taken[6] = input_filter0__input_count6_taken;
 assign input_filter0_taken[5] = input_filter0__input_count5_taken;
 assign input_filter0_taken[4] = input_filter0__input_count4_taken;
@@ -3738,24 +3760,212 @@ end
 
 
 
+assign pulse_out0_axis_x_turns = (pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_axis_x_dir_level));
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_axis_x_step_level
+    if (reset == 0) begin
+        pulse_out0_axis_x_level <= 0;
+        pulse_out0_axis_x_dir_level <= 1;
+    end
+    else begin
+        if (pulse_out0_high_ends) begin
+            pulse_out0_axis_x_level <= 0;
+        end
+        else if (pulse_out0_take) begin
+            pulse_out0_axis_x_level <= pulse_out0_head[0];
+        end
+        if ((pulse_out0_set_dir && pulse_out0_head[0])) begin
+            pulse_out0_axis_x_dir_level <= pulse_out0_head[2];
+        end
+    end
+end
+
+
+always @(pulse_out0_axis_x_dir_level) begin: pulse_out0_axis_x_step_sense
+    pulse_out0_axis_x_delta = 1;
+    if ((!pulse_out0_axis_x_dir_level)) begin
+        pulse_out0_axis_x_delta = (-1);
+    end
+end
+
+
+always @(pulse_out0_axis_x_level, reg_word16_shown[0], pulse_out0_axis_x_dir_level, pulse_out0_axis_x_quad, pulse_out0_axis_x_pulse) begin: pulse_out0_axis_x_pin_direction
+    pulse_out0_axis_x_up = (pulse_out0_axis_x_dir_level ^ reg_word16_shown[0]);
+    pulse_out0_axis_x_quad_next = pulse_out0_axis_x_quad;
+    if ((pulse_out0_axis_x_level && (!pulse_out0_axis_x_pulse))) begin
+        if ((pulse_out0_axis_x_dir_level ^ reg_word16_shown[0])) begin
+            pulse_out0_axis_x_quad_next = (pulse_out0_axis_x_quad + 1);
+        end
+        else begin
+            pulse_out0_axis_x_quad_next = (pulse_out0_axis_x_quad - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_axis_x_drive_pins
+    if (reset == 0) begin
+        pins_dir_x <= 0;
+        pins_step_x <= 0;
+        pulse_out0_axis_x_pulse <= 0;
+        pulse_out0_axis_x_quad <= 0;
+    end
+    else begin
+        pulse_out0_axis_x_pulse <= pulse_out0_axis_x_level;
+        pulse_out0_axis_x_quad <= pulse_out0_axis_x_quad_next;
+        case (step_mode)
+            'h1: begin
+                pins_step_x <= (pulse_out0_axis_x_level && pulse_out0_axis_x_up);
+                pins_dir_x <= (pulse_out0_axis_x_level && (!pulse_out0_axis_x_up));
+            end
+            'h2: begin
+                pins_step_x <= (pulse_out0_axis_x_quad_next[0] ^ pulse_out0_axis_x_quad_next[1]);
+                pins_dir_x <= pulse_out0_axis_x_quad_next[1];
+            end
+            default: begin
+                pins_step_x <= pulse_out0_axis_x_level;
+                pins_dir_x <= pulse_out0_axis_x_up;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_axis_x_count_position
+    if (reset == 0) begin
+        pulse_out0_axis_x_position <= 0;
+    end
+    else begin
+        if (clear_position) begin
+            pulse_out0_axis_x_position <= 0;
+        end
+        else if (home_zero[0]) begin
+            pulse_out0_axis_x_position <= 0;
+            if ((pulse_out0_axis_x_level && (!pulse_out0_axis_x_pulse))) begin
+                pulse_out0_axis_x_position <= pulse_out0_axis_x_delta;
+            end
+        end
+        else if ((pulse_out0_axis_x_level && (!pulse_out0_axis_x_pulse))) begin
+            pulse_out0_axis_x_position <= (pulse_out0_axis_x_position + pulse_out0_axis_x_delta);
+        end
+    end
+end
+
+
+
+assign pulse_out0_axis_y_turns = (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_axis_y_dir_level));
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_axis_y_step_level
+    if (reset == 0) begin
+        pulse_out0_axis_y_level <= 0;
+        pulse_out0_axis_y_dir_level <= 1;
+    end
+    else begin
+        if (pulse_out0_high_ends) begin
+            pulse_out0_axis_y_level <= 0;
+        end
+        else if (pulse_out0_take) begin
+            pulse_out0_axis_y_level <= pulse_out0_head[1];
+        end
+        if ((pulse_out0_set_dir && pulse_out0_head[1])) begin
+            pulse_out0_axis_y_dir_level <= pulse_out0_head[3];
+        end
+    end
+end
+
+
+always @(pulse_out0_axis_y_dir_level) begin: pulse_out0_axis_y_step_sense
+    pulse_out0_axis_y_delta = 1;
+    if ((!pulse_out0_axis_y_dir_level)) begin
+        pulse_out0_axis_y_delta = (-1);
+    end
+end
+
+
+always @(pulse_out0_axis_y_level, reg_word16_shown[1], pulse_out0_axis_y_dir_level, pulse_out0_axis_y_quad, pulse_out0_axis_y_pulse) begin: pulse_out0_axis_y_pin_direction
+    pulse_out0_axis_y_up = (pulse_out0_axis_y_dir_level ^ reg_word16_shown[1]);
+    pulse_out0_axis_y_quad_next = pulse_out0_axis_y_quad;
+    if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
+        if ((pulse_out0_axis_y_dir_level ^ reg_word16_shown[1])) begin
+            pulse_out0_axis_y_quad_next = (pulse_out0_axis_y_quad + 1);
+        end
+        else begin
+            pulse_out0_axis_y_quad_next = (pulse_out0_axis_y_quad - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_axis_y_drive_pins
+    if (reset == 0) begin
+        pins_dir_y <= 0;
+        pins_step_y <= 0;
+        pulse_out0_axis_y_pulse <= 0;
+        pulse_out0_axis_y_quad <= 0;
+    end
+    else begin
+        pulse_out0_axis_y_pulse <= pulse_out0_axis_y_level;
+        pulse_out0_axis_y_quad <= pulse_out0_axis_y_quad_next;
+        case (step_mode)
+            'h1: begin
+                pins_step_y <= (pulse_out0_axis_y_level && pulse_out0_axis_y_up);
+                pins_dir_y <= (pulse_out0_axis_y_level && (!pulse_out0_axis_y_up));
+            end
+            'h2: begin
+                pins_step_y <= (pulse_out0_axis_y_quad_next[0] ^ pulse_out0_axis_y_quad_next[1]);
+                pins_dir_y <= pulse_out0_axis_y_quad_next[1];
+            end
+            default: begin
+                pins_step_y <= pulse_out0_axis_y_level;
+                pins_dir_y <= pulse_out0_axis_y_up;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pulse_out0_axis_y_count_position
+    if (reset == 0) begin
+        position_y <= 0;
+    end
+    else begin
+        if (clear_position) begin
+            position_y <= 0;
+        end
+        else if (home_zero[1]) begin
+            position_y <= 0;
+            if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
+                position_y <= pulse_out0_axis_y_delta;
+            end
+        end
+        else if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
+            position_y <= (position_y + pulse_out0_axis_y_delta);
+        end
+    end
+end
+
+
+
 assign out_ready = ($signed({1'b0, pulse_out0_count}) <= (4 - 2));
-assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || pulse_out0_pulse_x || pulse_out0_pulse_y);
-assign pulse_out0_control_pulsing = (pulse_out0_take || pulse_out0_level_x || pulse_out0_level_y || pulse_out0_pulse_x || pulse_out0_pulse_y);
+assign out_active = ((pulse_out0_count != 0) || (pulse_out0_phase != 2'b00) || (pulse_out0_pulses != 0));
+assign pulse_out0_control_pulsing = (pulse_out0_take || (pulse_out0_levels != 0) || (pulse_out0_pulses != 0));
 
 
 
 assign pulse_out0_head = pulse_out0_queue[0];
 
 
-always @(pulse_out0_phase_clocks, pulse_out0_head, pulse_out0_phase, pulse_out0_count, pulse_out0_dir_level_x, pulse_out0_dir_level_y, reg_word14_shown, reg_word37_shown, pulse_out0_low_clocks, pulse_clear) begin: pulse_out0_decide
-    pulse_out0_turn = ((pulse_out0_count != 0) && ((pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_dir_level_x)) || (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_dir_level_y))));
+always @(pulse_out0_phase_clocks, pulse_out0_phase, pulse_out0_count, reg_word14_shown, reg_word37_shown, pulse_out0_low_clocks, pulse_clear, pulse_out0_turns) begin: pulse_out0_decide
+    pulse_out0_turn = ((pulse_out0_count != 0) && (pulse_out0_turns != 0));
     pulse_out0_take = 1'b0;
     if (((pulse_out0_phase != 2'b10) && (!pulse_clear) && (pulse_out0_low_clocks >= reg_word37_shown))) begin
         if ((pulse_out0_phase == 2'b01)) begin
             pulse_out0_take = (pulse_out0_phase_clocks >= reg_word14_shown);
         end
         else if ((pulse_out0_count != 0)) begin
-            pulse_out0_take = (!((pulse_out0_head[0] && (pulse_out0_head[2] != pulse_out0_dir_level_x)) || (pulse_out0_head[1] && (pulse_out0_head[3] != pulse_out0_dir_level_y))));
+            pulse_out0_take = (pulse_out0_turns == 0);
         end
     end
 end
@@ -3764,6 +3974,7 @@ end
 always @(pulse_out0_phase_clocks, pulse_out0_phase, pulse_out0_low_clocks, pulse_out0_turn, reg_word13_shown, pulse_clear, pulse_out0_take, reg_word15_shown) begin: pulse_out0_restart
     pulse_out0_starts = (pulse_out0_take || ((pulse_out0_phase == 2'b00) && (!pulse_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_shown)));
     pulse_out0_high_ends = ((pulse_out0_phase == 2'b10) && (pulse_out0_phase_clocks >= reg_word13_shown));
+    pulse_out0_set_dir = ((pulse_out0_phase == 2'b00) && (!pulse_clear) && pulse_out0_turn && (pulse_out0_low_clocks >= reg_word15_shown) && (!pulse_out0_take));
     pulse_out0_phase_step = 0;
     if ((pulse_out0_phase_clocks != 255)) begin
         pulse_out0_phase_step = 1;
@@ -3799,35 +4010,21 @@ end
 
 always @(posedge clock, negedge reset) begin: pulse_out0_step_phases
     if (reset == 0) begin
-        pulse_out0_level_y <= 0;
         pulse_out0_phase <= 2'b00;
-        pulse_out0_dir_level_x <= 1;
-        pulse_out0_dir_level_y <= 1;
-        pulse_out0_level_x <= 0;
     end
     else begin
         if ((pulse_out0_phase == 2'b10)) begin
             if (pulse_out0_high_ends) begin
-                pulse_out0_level_x <= 0;
-                pulse_out0_level_y <= 0;
                 pulse_out0_phase <= 2'b00;
             end
         end
         else if (pulse_out0_take) begin
-            pulse_out0_level_x <= pulse_out0_head[0];
-            pulse_out0_level_y <= pulse_out0_head[1];
             pulse_out0_phase <= 2'b10;
         end
         else if (pulse_clear) begin
             pulse_out0_phase <= 2'b00;
         end
         else if (((pulse_out0_phase == 2'b00) && pulse_out0_starts)) begin
-            if (pulse_out0_head[0]) begin
-                pulse_out0_dir_level_x <= pulse_out0_head[2];
-            end
-            if (pulse_out0_head[1]) begin
-                pulse_out0_dir_level_y <= pulse_out0_head[3];
-            end
             pulse_out0_phase <= 2'b01;
         end
     end
@@ -3846,8 +4043,8 @@ always @(posedge clock, negedge reset) begin: pulse_out0_fill
         pulse_out0_queue[3] <= 0;
     end
     else begin
-        pushed = (pulse_out0_request_step_x || pulse_out0_request_step_y);
-        entry = {pulse_out0_request_dir_y, pulse_out0_request_dir_x, pulse_out0_request_step_y, pulse_out0_request_step_x};
+        pushed = (pulse_out0_request_steps != 0);
+        entry = {pulse_out0_request_dirs, pulse_out0_request_steps};
         if (pulse_clear) begin
             pulse_out0_count <= 0;
         end
@@ -3873,116 +4070,6 @@ end
 
 assign pulse_out0_last_slot = (pulse_out0_count[2-1:0] - 1);
 assign pulse_out0_free_slot = pulse_out0_count[2-1:0];
-
-
-always @(pulse_out0_dir_level_x, pulse_out0_dir_level_y) begin: pulse_out0_step_sense
-    pulse_out0_delta_x = 1;
-    if ((!pulse_out0_dir_level_x)) begin
-        pulse_out0_delta_x = (-1);
-    end
-    pulse_out0_delta_y = 1;
-    if ((!pulse_out0_dir_level_y)) begin
-        pulse_out0_delta_y = (-1);
-    end
-end
-
-
-always @(reg_word16_shown[1], reg_word16_shown[0], pulse_out0_level_y, pulse_out0_dir_level_x, pulse_out0_quad_x, pulse_out0_dir_level_y, pulse_out0_pulse_x, pulse_out0_level_x, pulse_out0_quad_y, pulse_out0_pulse_y) begin: pulse_out0_pin_direction
-    pulse_out0_up_x = (pulse_out0_dir_level_x ^ reg_word16_shown[0]);
-    pulse_out0_up_y = (pulse_out0_dir_level_y ^ reg_word16_shown[1]);
-    pulse_out0_quad_next_x = pulse_out0_quad_x;
-    if ((pulse_out0_level_x && (!pulse_out0_pulse_x))) begin
-        if ((pulse_out0_dir_level_x ^ reg_word16_shown[0])) begin
-            pulse_out0_quad_next_x = (pulse_out0_quad_x + 1);
-        end
-        else begin
-            pulse_out0_quad_next_x = (pulse_out0_quad_x - 1);
-        end
-    end
-    pulse_out0_quad_next_y = pulse_out0_quad_y;
-    if ((pulse_out0_level_y && (!pulse_out0_pulse_y))) begin
-        if ((pulse_out0_dir_level_y ^ reg_word16_shown[1])) begin
-            pulse_out0_quad_next_y = (pulse_out0_quad_y + 1);
-        end
-        else begin
-            pulse_out0_quad_next_y = (pulse_out0_quad_y - 1);
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: pulse_out0_drive_pins
-    if (reset == 0) begin
-        pins_step_x <= 0;
-        pins_dir_x <= 0;
-        pins_dir_y <= 0;
-        pulse_out0_quad_x <= 0;
-        pulse_out0_pulse_x <= 0;
-        pulse_out0_quad_y <= 0;
-        pins_step_y <= 0;
-        pulse_out0_pulse_y <= 0;
-    end
-    else begin
-        pulse_out0_pulse_x <= pulse_out0_level_x;
-        pulse_out0_pulse_y <= pulse_out0_level_y;
-        pulse_out0_quad_x <= pulse_out0_quad_next_x;
-        pulse_out0_quad_y <= pulse_out0_quad_next_y;
-        case (step_mode)
-            'h1: begin
-                pins_step_x <= (pulse_out0_level_x && pulse_out0_up_x);
-                pins_dir_x <= (pulse_out0_level_x && (!pulse_out0_up_x));
-                pins_step_y <= (pulse_out0_level_y && pulse_out0_up_y);
-                pins_dir_y <= (pulse_out0_level_y && (!pulse_out0_up_y));
-            end
-            'h2: begin
-                pins_step_x <= (pulse_out0_quad_next_x[0] ^ pulse_out0_quad_next_x[1]);
-                pins_dir_x <= pulse_out0_quad_next_x[1];
-                pins_step_y <= (pulse_out0_quad_next_y[0] ^ pulse_out0_quad_next_y[1]);
-                pins_dir_y <= pulse_out0_quad_next_y[1];
-            end
-            default: begin
-                pins_step_x <= pulse_out0_level_x;
-                pins_dir_x <= pulse_out0_up_x;
-                pins_step_y <= pulse_out0_level_y;
-                pins_dir_y <= pulse_out0_up_y;
-            end
-        endcase
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: pulse_out0_count_positions
-    if (reset == 0) begin
-        position_y <= 0;
-        pulse_out0_position_x <= 0;
-    end
-    else begin
-        if (clear_position) begin
-            pulse_out0_position_x <= 0;
-            position_y <= 0;
-        end
-        else begin
-            if (home_zero[0]) begin
-                pulse_out0_position_x <= 0;
-                if ((pulse_out0_level_x && (!pulse_out0_pulse_x))) begin
-                    pulse_out0_position_x <= pulse_out0_delta_x;
-                end
-            end
-            else if ((pulse_out0_level_x && (!pulse_out0_pulse_x))) begin
-                pulse_out0_position_x <= (pulse_out0_position_x + pulse_out0_delta_x);
-            end
-            if (home_zero[1]) begin
-                position_y <= 0;
-                if ((pulse_out0_level_y && (!pulse_out0_pulse_y))) begin
-                    position_y <= pulse_out0_delta_y;
-                end
-            end
-            else if ((pulse_out0_level_y && (!pulse_out0_pulse_y))) begin
-                position_y <= (position_y + pulse_out0_delta_y);
-            end
-        end
-    end
-end
 
 
 always @(posedge clock, negedge reset) begin: input_filter0_synchronise
@@ -4198,20 +4285,24 @@ assign input_filter0__input_count6_taken = (input_filter0_sample && (input_filte
 
 
 
+assign machine_guard0_grant_x_granted_step = (requests_step_x && machine_guard0_passes);
+assign machine_guard0_grant_x_granted_dir = requests_dir_x;
+
+
+
+assign machine_guard0_grant_y_granted_step = (requests_step_y && machine_guard0_passes);
+assign machine_guard0_grant_y_granted_dir = requests_dir_y;
+
+
+
 assign machine_guard0_estop = conditioning_active[0];
 assign machine_guard0_expired = ((watchdog_left == 1) && (!reg_word30__store20_word_strobe));
 assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && conditioning_active[4]), (requests_step_y && requests_dir_y && conditioning_active[3]), (requests_step_x && (!requests_dir_x) && conditioning_active[2]), (requests_step_x && requests_dir_x && conditioning_active[1])};
 
 
-always @(machine_guard0_hits, guard_stopped, requests_step_x, requests_dir_y, guard_ramp, requests_step_y, requests_dir_x, machine_guard0_estop) begin: machine_guard0_gate
-    reg passes;
-    halt = (guard_stopped || machine_guard0_estop);
-    passes = ((!(guard_stopped || machine_guard0_estop)) && ((machine_guard0_hits == 0) || guard_ramp));
-    pulse_out0_request_step_x = (requests_step_x && passes);
-    pulse_out0_request_step_y = (requests_step_y && passes);
-    pulse_out0_request_dir_x = requests_dir_x;
-    pulse_out0_request_dir_y = requests_dir_y;
-end
+
+assign halt = (guard_stopped || machine_guard0_estop);
+assign machine_guard0_passes = ((!(guard_stopped || machine_guard0_estop)) && ((machine_guard0_hits == 0) || guard_ramp));
 
 
 always @(posedge clock, negedge reset) begin: machine_guard0_latch
@@ -4590,7 +4681,7 @@ always @(posedge clock, negedge reset) begin: outputs_before
         out_active_before <= 0;
     end
     else begin
-        requested_before <= (requests_step_x || requests_step_y);
+        requested_before <= (requested != 0);
         out_active_before <= out_active;
     end
 end
@@ -4610,7 +4701,7 @@ end
 
 
 assign pulse_busy = (direct_busy_x || direct_busy_y);
-assign outputs_busy = (requests_step_x || requests_step_y || requested_before || out_active_before);
+assign outputs_busy = ((requested != 0) || requested_before || out_active_before);
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
 assign any_busy = (seq_busy || direct_busy_x || direct_busy_y || out_active || dda_busy || home_busy);
@@ -4743,7 +4834,7 @@ end
 
 
 
-assign reg_word8_shown = pulse_out0_position_x[32-1:0];
+assign reg_word8_shown = pulse_out0_axis_x_position[32-1:0];
 assign reg_word9_shown = pos_y_snapshot[32-1:0];
 
 endmodule

@@ -35,7 +35,8 @@ module top (
 // 
 // Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
 // (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
-// PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
+// PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR of
+// every axis of the build, the machine's inputs).
 // Parameters: those of ``card`` (``models/parameters.py``).  ``device``
 // ``ice40`` (the top's default): the PCI boundary flip-flops are the iCE40
 // I/O cells' registers (``rtl/pci/pci_pads.py``; the target is told so) and
@@ -291,7 +292,6 @@ reg [3:0] card1_card_core1_regs_fifo2_set_index;
 reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
-reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg [1:0] card1_card_core1_regs_fifo2_step_mode;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
@@ -309,10 +309,11 @@ wire card1_card_core1_regs_fifo2_fifo_empty;
 wire card1_card_core1_regs_fifo2_fifo_flush;
 wire card1_card_core1_regs_fifo2_fifo_full;
 wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
-reg card1_card_core1_regs_fifo2_halt;
+wire card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
 reg card1_card_core1_regs_fifo2_home_idle;
 reg [1:0] card1_card_core1_regs_fifo2_home_inputs;
+reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
@@ -329,6 +330,7 @@ reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_read_waited;
 reg [31:0] card1_card_core1_regs_fifo2_read_word;
 reg card1_card_core1_regs_fifo2_releasing;
+wire [1:0] card1_card_core1_regs_fifo2_requested;
 reg card1_card_core1_regs_fifo2_requested_before;
 wire card1_card_core1_regs_fifo2_seq_busy;
 reg card1_card_core1_regs_fifo2_sequencer_clear;
@@ -353,15 +355,15 @@ reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
 reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_home_cut;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
-wire card1_card_core1_regs_fifo2_requests_step_x;
-wire card1_card_core1_regs_fifo2_requests_step_y;
 reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
 wire card1_card_core1_regs_fifo2_direct_busy_x;
 wire card1_card_core1_regs_fifo2_direct_busy_y;
 wire card1_card_core1_regs_fifo2_dda_advance;
 wire card1_card_core1_regs_fifo2_dda_busy;
+wire card1_card_core1_regs_fifo2_requests_step_x;
 reg card1_card_core1_regs_fifo2_steps_step_x;
 reg card1_card_core1_regs_fifo2_direct_request_x;
+wire card1_card_core1_regs_fifo2_requests_step_y;
 reg card1_card_core1_regs_fifo2_steps_step_y;
 reg card1_card_core1_regs_fifo2_direct_request_y;
 wire card1_card_core1_regs_fifo2_requests_dir_x;
@@ -836,38 +838,42 @@ reg card1_card_core1_regs_fifo2_direct_pulse5_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
-reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_delta_x;
-reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_delta_y;
-reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_x;
-reg card1_card_core1_regs_fifo2_pulse_out2_dir_level_y;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_free_slot;
 wire [3:0] card1_card_core1_regs_fifo2_pulse_out2_head;
 reg card1_card_core1_regs_fifo2_pulse_out2_high_ends;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_last_slot;
-reg card1_card_core1_regs_fifo2_pulse_out2_level_x;
-reg card1_card_core1_regs_fifo2_pulse_out2_level_y;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_levels;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_clocks;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_low_step;
 reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_phase;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_clocks;
 reg [7:0] card1_card_core1_regs_fifo2_pulse_out2_phase_step;
-reg card1_card_core1_regs_fifo2_pulse_out2_pulse_x;
-reg card1_card_core1_regs_fifo2_pulse_out2_pulse_y;
-reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
-reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
-reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_x;
-reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_quad_y;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_pulses;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_request_dirs;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_request_steps;
+reg card1_card_core1_regs_fifo2_pulse_out2_set_dir;
 reg card1_card_core1_regs_fifo2_pulse_out2_starts;
 reg card1_card_core1_regs_fifo2_pulse_out2_take;
 reg card1_card_core1_regs_fifo2_pulse_out2_turn;
-reg card1_card_core1_regs_fifo2_pulse_out2_up_x;
-reg card1_card_core1_regs_fifo2_pulse_out2_up_y;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_turns;
 wire card1_card_core1_regs_fifo2_pulse_out2_control_pulsing;
-reg card1_card_core1_regs_fifo2_pulse_out2_request_step_x;
-reg card1_card_core1_regs_fifo2_pulse_out2_request_step_y;
-reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_y;
-reg card1_card_core1_regs_fifo2_pulse_out2_request_dir_x;
-reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_position_x;
+wire card1_card_core1_regs_fifo2_pulse_out2_axis_x_turns;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_x_level;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_axis_x_position;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_axis_x_delta;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_x_up;
+wire card1_card_core1_regs_fifo2_pulse_out2_axis_y_turns;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse;
+reg signed [31:0] card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad;
+reg [1:0] card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next;
+reg card1_card_core1_regs_fifo2_pulse_out2_axis_y_up;
 wire [6:0] card1_card_core1_regs_fifo2_input_filter2_level;
 reg [15:0] card1_card_core1_regs_fifo2_input_filter2_prescale;
 wire card1_card_core1_regs_fifo2_input_filter2_sample;
@@ -893,8 +899,13 @@ wire card1_card_core1_regs_fifo2_input_filter2__input_count20_taken;
 wire card1_card_core1_regs_fifo2_machine_guard2_estop;
 wire card1_card_core1_regs_fifo2_machine_guard2_expired;
 wire [3:0] card1_card_core1_regs_fifo2_machine_guard2_hits;
+wire card1_card_core1_regs_fifo2_machine_guard2_passes;
 reg [1:0] card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
 reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+wire card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_step;
+wire card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_dir;
+wire card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_step;
+wire card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_dir;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_addend;
 reg card1_card_core1_regs_fifo2_homing2_axis;
 reg card1_card_core1_regs_fifo2_homing2_done;
@@ -1163,6 +1174,18 @@ assign card1_pci_slave2_ad_out_next[3] = card1_pci_slave2_pin_lut36_out;
 assign card1_pci_slave2_ad_out_next[2] = card1_pci_slave2_pin_lut35_out;
 assign card1_pci_slave2_ad_out_next[1] = card1_pci_slave2_pin_lut34_out;
 assign card1_pci_slave2_ad_out_next[0] = card1_pci_slave2_pin_lut33_out;
+assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
+assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
+assign card1_card_core1_regs_fifo2_pulse_out2_levels[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
+assign card1_card_core1_regs_fifo2_pulse_out2_levels[0] = card1_card_core1_regs_fifo2_pulse_out2_axis_x_level;
+assign card1_card_core1_regs_fifo2_pulse_out2_pulses[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse;
+assign card1_card_core1_regs_fifo2_pulse_out2_pulses[0] = card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse;
+assign card1_card_core1_regs_fifo2_pulse_out2_request_dirs[1] = card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_dir;
+assign card1_card_core1_regs_fifo2_pulse_out2_request_dirs[0] = card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_dir;
+assign card1_card_core1_regs_fifo2_pulse_out2_request_steps[1] = card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_step;
+assign card1_card_core1_regs_fifo2_pulse_out2_request_steps[0] = card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_step;
+assign card1_card_core1_regs_fifo2_pulse_out2_turns[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_turns;
+assign card1_card_core1_regs_fifo2_pulse_out2_turns[0] = card1_card_core1_regs_fifo2_pulse_out2_axis_x_turns;
 assign card1_card_core1_regs_fifo2_input_filter2_taken[6] = card1_card_core1_regs_fifo2_input_filter2__input_count20_taken;
 assign card1_card_core1_regs_fifo2_input_filter2_taken[5] = card1_card_core1_regs_fifo2_input_filter2__input_count19_taken;
 assign card1_card_core1_regs_fifo2_input_filter2_taken[4] = card1_card_core1_regs_fifo2_input_filter2__input_count18_taken;
@@ -6071,24 +6094,212 @@ end
 
 
 
+assign card1_card_core1_regs_fifo2_pulse_out2_axis_x_turns = (card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_step_level
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_level <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level <= 1;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_pulse_out2_high_ends) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_level <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_level <= card1_card_core1_regs_fifo2_pulse_out2_head[0];
+        end
+        if ((card1_card_core1_regs_fifo2_pulse_out2_set_dir && card1_card_core1_regs_fifo2_pulse_out2_head[0])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level <= card1_card_core1_regs_fifo2_pulse_out2_head[2];
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_step_sense
+    card1_card_core1_regs_fifo2_pulse_out2_axis_x_delta = 1;
+    if ((!card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_delta = (-1);
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_pulse_out2_axis_x_level, card1_card_core1_regs_fifo2_reg_word94_shown[0], card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level, card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad, card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_pin_direction
+    card1_card_core1_regs_fifo2_pulse_out2_axis_x_up = (card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[0]);
+    card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next = card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[0])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next = (card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad + 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next = (card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_drive_pins
+    if (reset == 0) begin
+        motor_dir_x <= 0;
+        motor_step_x <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse <= card1_card_core1_regs_fifo2_pulse_out2_axis_x_level;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad <= card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next;
+        case (card1_card_core1_regs_fifo2_step_mode)
+            'h1: begin
+                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_axis_x_level && card1_card_core1_regs_fifo2_pulse_out2_axis_x_up);
+                motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_axis_x_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_x_up));
+            end
+            'h2: begin
+                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next[0] ^ card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next[1]);
+                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next[1];
+            end
+            default: begin
+                motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_axis_x_level;
+                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_axis_x_up;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_count_position
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_x_position <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_clear_position) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_position <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_home_zero[0]) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_position <= 0;
+            if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse))) begin
+                card1_card_core1_regs_fifo2_pulse_out2_axis_x_position <= card1_card_core1_regs_fifo2_pulse_out2_axis_x_delta;
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse))) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_x_position <= (card1_card_core1_regs_fifo2_pulse_out2_axis_x_position + card1_card_core1_regs_fifo2_pulse_out2_axis_x_delta);
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_pulse_out2_axis_y_turns = (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_step_level
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_level <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level <= 1;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_pulse_out2_high_ends) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_y_level <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_y_level <= card1_card_core1_regs_fifo2_pulse_out2_head[1];
+        end
+        if ((card1_card_core1_regs_fifo2_pulse_out2_set_dir && card1_card_core1_regs_fifo2_pulse_out2_head[1])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level <= card1_card_core1_regs_fifo2_pulse_out2_head[3];
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_step_sense
+    card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta = 1;
+    if ((!card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level)) begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta = (-1);
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_pulse_out2_axis_y_level, card1_card_core1_regs_fifo2_reg_word94_shown[1], card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level, card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad, card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_pin_direction
+    card1_card_core1_regs_fifo2_pulse_out2_axis_y_up = (card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[1]);
+    card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next = card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad;
+    if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[1])) begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next = (card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad + 1);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next = (card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad - 1);
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_drive_pins
+    if (reset == 0) begin
+        motor_dir_y <= 0;
+        motor_step_y <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse <= 0;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
+        card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next;
+        case (card1_card_core1_regs_fifo2_step_mode)
+            'h1: begin
+                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && card1_card_core1_regs_fifo2_pulse_out2_axis_y_up);
+                motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_up));
+            end
+            'h2: begin
+                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next[0] ^ card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next[1]);
+                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next[1];
+            end
+            default: begin
+                motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
+                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_up;
+            end
+        endcase
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_count_position
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_position_y <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_clear_position) begin
+            card1_card_core1_regs_fifo2_position_y <= 0;
+        end
+        else if (card1_card_core1_regs_fifo2_home_zero[1]) begin
+            card1_card_core1_regs_fifo2_position_y <= 0;
+            if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
+                card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta;
+            end
+        end
+        else if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
+            card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta);
+        end
+    end
+end
+
+
+
 assign card1_card_core1_regs_fifo2_out_ready = ($signed({1'b0, card1_card_core1_regs_fifo2_pulse_out2_count}) <= (4 - 2));
-assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || card1_card_core1_regs_fifo2_pulse_out2_pulse_x || card1_card_core1_regs_fifo2_pulse_out2_pulse_y);
-assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || card1_card_core1_regs_fifo2_pulse_out2_level_x || card1_card_core1_regs_fifo2_pulse_out2_level_y || card1_card_core1_regs_fifo2_pulse_out2_pulse_x || card1_card_core1_regs_fifo2_pulse_out2_pulse_y);
+assign card1_card_core1_regs_fifo2_out_active = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) || (card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b00) || (card1_card_core1_regs_fifo2_pulse_out2_pulses != 0));
+assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core1_regs_fifo2_pulse_out2_take || (card1_card_core1_regs_fifo2_pulse_out2_levels != 0) || (card1_card_core1_regs_fifo2_pulse_out2_pulses != 0));
 
 
 
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_head, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_reg_word115_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_clear) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
-    card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && ((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_reg_word115_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_turns) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+    card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && (card1_card_core1_regs_fifo2_pulse_out2_turns != 0));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
     if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word115_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word92_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (!((card1_card_core1_regs_fifo2_pulse_out2_head[0] && (card1_card_core1_regs_fifo2_pulse_out2_head[2] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) || (card1_card_core1_regs_fifo2_pulse_out2_head[1] && (card1_card_core1_regs_fifo2_pulse_out2_head[3] != card1_card_core1_regs_fifo2_pulse_out2_dir_level_y))));
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_turns == 0);
         end
     end
 end
@@ -6097,6 +6308,7 @@ end
 always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
     card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word93_shown)));
     card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word91_shown));
+    card1_card_core1_regs_fifo2_pulse_out2_set_dir = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word93_shown) && (!card1_card_core1_regs_fifo2_pulse_out2_take));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -6132,35 +6344,21 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_step_phases
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_pulse_out2_level_y <= 0;
         card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
-        card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= 1;
-        card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= 1;
-        card1_card_core1_regs_fifo2_pulse_out2_level_x <= 0;
     end
     else begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10)) begin
             if (card1_card_core1_regs_fifo2_pulse_out2_high_ends) begin
-                card1_card_core1_regs_fifo2_pulse_out2_level_x <= 0;
-                card1_card_core1_regs_fifo2_pulse_out2_level_y <= 0;
                 card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
             end
         end
         else if (card1_card_core1_regs_fifo2_pulse_out2_take) begin
-            card1_card_core1_regs_fifo2_pulse_out2_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[0];
-            card1_card_core1_regs_fifo2_pulse_out2_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[1];
             card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b10;
         end
         else if (card1_card_core1_regs_fifo2_pulse_clear) begin
             card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b00;
         end
         else if (((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && card1_card_core1_regs_fifo2_pulse_out2_starts)) begin
-            if (card1_card_core1_regs_fifo2_pulse_out2_head[0]) begin
-                card1_card_core1_regs_fifo2_pulse_out2_dir_level_x <= card1_card_core1_regs_fifo2_pulse_out2_head[2];
-            end
-            if (card1_card_core1_regs_fifo2_pulse_out2_head[1]) begin
-                card1_card_core1_regs_fifo2_pulse_out2_dir_level_y <= card1_card_core1_regs_fifo2_pulse_out2_head[3];
-            end
             card1_card_core1_regs_fifo2_pulse_out2_phase <= 2'b01;
         end
     end
@@ -6179,8 +6377,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_
         card1_card_core1_regs_fifo2_pulse_out2_queue[3] <= 0;
     end
     else begin
-        pushed = (card1_card_core1_regs_fifo2_pulse_out2_request_step_x || card1_card_core1_regs_fifo2_pulse_out2_request_step_y);
-        entry = {card1_card_core1_regs_fifo2_pulse_out2_request_dir_y, card1_card_core1_regs_fifo2_pulse_out2_request_dir_x, card1_card_core1_regs_fifo2_pulse_out2_request_step_y, card1_card_core1_regs_fifo2_pulse_out2_request_step_x};
+        pushed = (card1_card_core1_regs_fifo2_pulse_out2_request_steps != 0);
+        entry = {card1_card_core1_regs_fifo2_pulse_out2_request_dirs, card1_card_core1_regs_fifo2_pulse_out2_request_steps};
         if (card1_card_core1_regs_fifo2_pulse_clear) begin
             card1_card_core1_regs_fifo2_pulse_out2_count <= 0;
         end
@@ -6206,116 +6404,6 @@ end
 
 assign card1_card_core1_regs_fifo2_pulse_out2_last_slot = (card1_card_core1_regs_fifo2_pulse_out2_count[2-1:0] - 1);
 assign card1_card_core1_regs_fifo2_pulse_out2_free_slot = card1_card_core1_regs_fifo2_pulse_out2_count[2-1:0];
-
-
-always @(card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y) begin: card1_card_core1_regs_fifo2_pulse_out2_step_sense
-    card1_card_core1_regs_fifo2_pulse_out2_delta_x = 1;
-    if ((!card1_card_core1_regs_fifo2_pulse_out2_dir_level_x)) begin
-        card1_card_core1_regs_fifo2_pulse_out2_delta_x = (-1);
-    end
-    card1_card_core1_regs_fifo2_pulse_out2_delta_y = 1;
-    if ((!card1_card_core1_regs_fifo2_pulse_out2_dir_level_y)) begin
-        card1_card_core1_regs_fifo2_pulse_out2_delta_y = (-1);
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word94_shown[1], card1_card_core1_regs_fifo2_reg_word94_shown[0], card1_card_core1_regs_fifo2_pulse_out2_level_y, card1_card_core1_regs_fifo2_pulse_out2_dir_level_x, card1_card_core1_regs_fifo2_pulse_out2_quad_x, card1_card_core1_regs_fifo2_pulse_out2_dir_level_y, card1_card_core1_regs_fifo2_pulse_out2_pulse_x, card1_card_core1_regs_fifo2_pulse_out2_level_x, card1_card_core1_regs_fifo2_pulse_out2_quad_y, card1_card_core1_regs_fifo2_pulse_out2_pulse_y) begin: card1_card_core1_regs_fifo2_pulse_out2_pin_direction
-    card1_card_core1_regs_fifo2_pulse_out2_up_x = (card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word94_shown[0]);
-    card1_card_core1_regs_fifo2_pulse_out2_up_y = (card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word94_shown[1]);
-    card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = card1_card_core1_regs_fifo2_pulse_out2_quad_x;
-    if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
-        if ((card1_card_core1_regs_fifo2_pulse_out2_dir_level_x ^ card1_card_core1_regs_fifo2_reg_word94_shown[0])) begin
-            card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = (card1_card_core1_regs_fifo2_pulse_out2_quad_x + 1);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_pulse_out2_quad_next_x = (card1_card_core1_regs_fifo2_pulse_out2_quad_x - 1);
-        end
-    end
-    card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = card1_card_core1_regs_fifo2_pulse_out2_quad_y;
-    if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
-        if ((card1_card_core1_regs_fifo2_pulse_out2_dir_level_y ^ card1_card_core1_regs_fifo2_reg_word94_shown[1])) begin
-            card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = (card1_card_core1_regs_fifo2_pulse_out2_quad_y + 1);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_pulse_out2_quad_next_y = (card1_card_core1_regs_fifo2_pulse_out2_quad_y - 1);
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_drive_pins
-    if (reset == 0) begin
-        motor_step_x <= 0;
-        motor_dir_x <= 0;
-        motor_dir_y <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_quad_x <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_pulse_x <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_quad_y <= 0;
-        motor_step_y <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_pulse_out2_pulse_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
-        card1_card_core1_regs_fifo2_pulse_out2_pulse_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-        card1_card_core1_regs_fifo2_pulse_out2_quad_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x;
-        card1_card_core1_regs_fifo2_pulse_out2_quad_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y;
-        case (card1_card_core1_regs_fifo2_step_mode)
-            'h1: begin
-                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && card1_card_core1_regs_fifo2_pulse_out2_up_x);
-                motor_dir_x <= (card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_up_x));
-                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_level_y && card1_card_core1_regs_fifo2_pulse_out2_up_y);
-                motor_dir_y <= (card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_up_y));
-            end
-            'h2: begin
-                motor_step_x <= (card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[0] ^ card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[1]);
-                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_x[1];
-                motor_step_y <= (card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[0] ^ card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[1]);
-                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_quad_next_y[1];
-            end
-            default: begin
-                motor_step_x <= card1_card_core1_regs_fifo2_pulse_out2_level_x;
-                motor_dir_x <= card1_card_core1_regs_fifo2_pulse_out2_up_x;
-                motor_step_y <= card1_card_core1_regs_fifo2_pulse_out2_level_y;
-                motor_dir_y <= card1_card_core1_regs_fifo2_pulse_out2_up_y;
-            end
-        endcase
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_count_positions
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_position_y <= 0;
-        card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
-    end
-    else begin
-        if (card1_card_core1_regs_fifo2_clear_position) begin
-            card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
-            card1_card_core1_regs_fifo2_position_y <= 0;
-        end
-        else begin
-            if (card1_card_core1_regs_fifo2_home_zero[0]) begin
-                card1_card_core1_regs_fifo2_pulse_out2_position_x <= 0;
-                if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
-                    card1_card_core1_regs_fifo2_pulse_out2_position_x <= card1_card_core1_regs_fifo2_pulse_out2_delta_x;
-                end
-            end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_x && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_x))) begin
-                card1_card_core1_regs_fifo2_pulse_out2_position_x <= (card1_card_core1_regs_fifo2_pulse_out2_position_x + card1_card_core1_regs_fifo2_pulse_out2_delta_x);
-            end
-            if (card1_card_core1_regs_fifo2_home_zero[1]) begin
-                card1_card_core1_regs_fifo2_position_y <= 0;
-                if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
-                    card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_delta_y;
-                end
-            end
-            else if ((card1_card_core1_regs_fifo2_pulse_out2_level_y && (!card1_card_core1_regs_fifo2_pulse_out2_pulse_y))) begin
-                card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_delta_y);
-            end
-        end
-    end
-end
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_synchronise
@@ -6531,20 +6619,24 @@ assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_c
 
 
 
+assign card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_step = (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_machine_guard2_passes);
+assign card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_dir = card1_card_core1_regs_fifo2_requests_dir_x;
+
+
+
+assign card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_step = (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_machine_guard2_passes);
+assign card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_dir = card1_card_core1_regs_fifo2_requests_dir_y;
+
+
+
 assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
 assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe));
 assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
 
 
-always @(card1_card_core1_regs_fifo2_machine_guard2_hits, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_requests_step_x, card1_card_core1_regs_fifo2_requests_dir_y, card1_card_core1_regs_fifo2_guard_ramp, card1_card_core1_regs_fifo2_requests_step_y, card1_card_core1_regs_fifo2_requests_dir_x, card1_card_core1_regs_fifo2_machine_guard2_estop) begin: card1_card_core1_regs_fifo2_machine_guard2_gate
-    reg passes;
-    card1_card_core1_regs_fifo2_halt = (card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop);
-    passes = ((!(card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop)) && ((card1_card_core1_regs_fifo2_machine_guard2_hits == 0) || card1_card_core1_regs_fifo2_guard_ramp));
-    card1_card_core1_regs_fifo2_pulse_out2_request_step_x = (card1_card_core1_regs_fifo2_requests_step_x && passes);
-    card1_card_core1_regs_fifo2_pulse_out2_request_step_y = (card1_card_core1_regs_fifo2_requests_step_y && passes);
-    card1_card_core1_regs_fifo2_pulse_out2_request_dir_x = card1_card_core1_regs_fifo2_requests_dir_x;
-    card1_card_core1_regs_fifo2_pulse_out2_request_dir_y = card1_card_core1_regs_fifo2_requests_dir_y;
-end
+
+assign card1_card_core1_regs_fifo2_halt = (card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop);
+assign card1_card_core1_regs_fifo2_machine_guard2_passes = ((!(card1_card_core1_regs_fifo2_guard_stopped || card1_card_core1_regs_fifo2_machine_guard2_estop)) && ((card1_card_core1_regs_fifo2_machine_guard2_hits == 0) || card1_card_core1_regs_fifo2_guard_ramp));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machine_guard2_latch
@@ -6923,7 +7015,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_output
         card1_card_core1_regs_fifo2_out_active_before <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_requested_before <= (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y);
+        card1_card_core1_regs_fifo2_requested_before <= (card1_card_core1_regs_fifo2_requested != 0);
         card1_card_core1_regs_fifo2_out_active_before <= card1_card_core1_regs_fifo2_out_active;
     end
 end
@@ -6943,7 +7035,7 @@ end
 
 
 assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y);
-assign card1_card_core1_regs_fifo2_outputs_busy = (card1_card_core1_regs_fifo2_requests_step_x || card1_card_core1_regs_fifo2_requests_step_y || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
+assign card1_card_core1_regs_fifo2_outputs_busy = ((card1_card_core1_regs_fifo2_requested != 0) || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
 assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
@@ -7076,7 +7168,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown = card1_card_core1_regs_fifo2_pulse_out2_position_x[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_shown = card1_card_core1_regs_fifo2_pulse_out2_axis_x_position[32-1:0];
 assign card1_card_core1_regs_fifo2_reg_word87_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 

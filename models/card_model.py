@@ -55,7 +55,7 @@ class FifoModel:
 
 
 class PulseOutModel:
-    """Both axes: rises, falls and DIR changes as the timing rules allow.
+    """Every axis (``axes``, 2 by default): rises, falls and DIR changes as the timing rules allow.
 
     Rules (clocks counted between the edges where the internal levels change;
     the pins follow one clock later): the steps of one iteration leave
@@ -74,19 +74,19 @@ class PulseOutModel:
     one pin changes per step, a step period after the last change.
     """
 
-    def __init__(self, queue_depth=4, in_flight=2):
-        self.queue_depth, self.in_flight = queue_depth, in_flight
+    def __init__(self, queue_depth=4, in_flight=2, axes=2):
+        self.queue_depth, self.in_flight, self.axes = queue_depth, in_flight, axes
         self.queue = deque()
         self.edge = 0
-        self.high = (False, False)
-        self.direction = [True, True]
+        self.high = (False,) * axes
+        self.direction = [True] * axes
         self.rise_edge = self.fall_edge = self.dir_edge = FAR_PAST
         self.in_setup = False
-        self.pulses = (False, False)   # the step pulses as step/dir mode puts them on STEP
-        self.quadrature = [0, 0]       # the quadrature counts, 0..3
-        self.step_pins = (False, False)
-        self.dir_pins = (False, False)
-        self.positions = [0, 0]
+        self.pulses = (False,) * axes   # the step pulses as step/dir mode puts them on STEP
+        self.quadrature = [0] * axes    # the quadrature counts, 0..3
+        self.step_pins = (False,) * axes
+        self.dir_pins = (False,) * axes
+        self.positions = [0] * axes
 
     @property
     def ready(self):
@@ -98,10 +98,13 @@ class PulseOutModel:
 
     def _needs_turn(self, entry):
         steps, dirs = entry
-        return any(steps[a] and dirs[a] != self.direction[a] for a in range(2))
+        return any(steps[a] and dirs[a] != self.direction[a] for a in range(self.axes))
 
-    def clock(self, steps=(False, False), dirs=(False, False), clear=False, clear_position=False,
-              width=1, setup=1, hold=1, polarity=(False, False), space=None, mode=0):
+    def clock(self, steps=None, dirs=None, clear=False, clear_position=False,
+              width=1, setup=1, hold=1, polarity=None, space=None, mode=0):
+        """One clock edge: ``steps``, ``dirs`` and ``polarity`` one an axis (None: all False)."""
+        steps, dirs, polarity = ((False,) * self.axes if given is None else given
+                                 for given in (steps, dirs, polarity))
         if mode not in range(len(STEP_MODES)):
             raise ValueError(f"step mode must be one of 0..{len(STEP_MODES) - 1}, not {mode}")
         space = width if space is None else space
@@ -112,7 +115,7 @@ class PulseOutModel:
         rise = False
         if any(self.high):
             if n - self.rise_edge >= width:
-                self.high = (False, False)
+                self.high = (False,) * self.axes
                 self.fall_edge = n
         elif self.in_setup:
             if clear:
@@ -124,7 +127,7 @@ class PulseOutModel:
                 rise = low_time >= space
             elif low_time >= hold:
                 head_steps, head_dirs = self.queue[0]
-                for axis in range(2):
+                for axis in range(self.axes):
                     if head_steps[axis]:
                         self.direction[axis] = head_dirs[axis]
                 self.dir_edge = n
@@ -138,8 +141,8 @@ class PulseOutModel:
             if len(self.queue) == self.queue_depth:
                 raise AssertionError("step request into a full pulse queue")
             self.queue.append((tuple(map(bool, steps)), tuple(map(bool, dirs))))
-        pin_dir = tuple(dir_before[a] != bool(polarity[a]) for a in range(2))
-        for axis in range(2):
+        pin_dir = tuple(dir_before[a] != bool(polarity[a]) for a in range(self.axes))
+        for axis in range(self.axes):
             rises = level_before[axis] and not self.pulses[axis]
             if clear_position:
                 self.positions[axis] = 0
@@ -151,8 +154,8 @@ class PulseOutModel:
         if mode == 0:
             self.step_pins, self.dir_pins = level_before, pin_dir
         elif mode == 1:
-            self.step_pins = tuple(level_before[a] and pin_dir[a] for a in range(2))
-            self.dir_pins = tuple(level_before[a] and not pin_dir[a] for a in range(2))
+            self.step_pins = tuple(level_before[a] and pin_dir[a] for a in range(self.axes))
+            self.dir_pins = tuple(level_before[a] and not pin_dir[a] for a in range(self.axes))
         else:
             self.step_pins = tuple(QUADRATURE_AB[count][0] for count in self.quadrature)
             self.dir_pins = tuple(QUADRATURE_AB[count][1] for count in self.quadrature)

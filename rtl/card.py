@@ -23,7 +23,7 @@ def card(clock, reset, pci, pins, *, build=Build(), io_registers=False):
     """The paper's figure 1 in the FPGA, PCI lines still split in / out / enable.
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci``
-    (``PciBus``), ``pins`` (``MotorPins``).  Parameters
+    (``PciBus``), ``pins`` (``MotorPins`` of the build's ``axes``).  Parameters
     (``models/parameters.py``): ``fifo_depth``, ``coord_width``, ``clock_hz``,
     ``variants``, ``device`` (the PCI target's one-LUT paths: plain logic or
     iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
@@ -43,6 +43,7 @@ def card(clock, reset, pci, pins, *, build=Build(), io_registers=False):
     return target, interior
 
 
-def card_ports():
-    """Fresh ports of ``card`` for conversion and benches (no build parameter changes a port)."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(), pins=MotorPins())
+def card_ports(axes=Build.axes):
+    """Fresh ports of ``card`` for conversion and benches: ``pins`` of ``axes`` axes (the build
+    parameter; no other changes a port)."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(), pins=MotorPins(axes))

@@ -12,7 +12,7 @@ def card_core(clock, reset, local, irq, pins, *, build=Build()):
     """``regs_fifo`` and ``dda_arc`` wired together.
 
     Ports: ``local`` (the PCI target's back end), ``irq`` (to INTA#),
-    ``pins`` (STEP/DIR).  COMMAND.SOFT_RESET resets the DDA through its
+    ``pins`` (STEP/DIR of the build's ``axes``).  COMMAND.SOFT_RESET resets the DDA through its
     asynchronous reset, driven from a flip-flop of ``regs_fifo`` (no glitch)
     and combined with RST#.  Parameters: ``build`` (a ``Build``,
     ``models/parameters.py``): its ``coord_width`` and ``variants`` make the
@@ -40,7 +40,7 @@ def card_core(clock, reset, local, irq, pins, *, build=Build()):
     return combine_resets, registers, interpolator
 
 
-def card_core_ports():
-    """Fresh ports of ``card_core`` for conversion and benches (no build parameter changes a port)."""
+def card_core_ports(axes=Build.axes):
+    """Fresh ports of ``card_core`` for conversion and benches: ``pins`` of ``axes`` axes."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(), irq=Signal(bool(0)),
-                pins=MotorPins())
+                pins=MotorPins(axes))

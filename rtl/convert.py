@@ -53,13 +53,14 @@ PROG = "python -m rtl.top"
 # whose every parameter shapes its ports (dda_arc reads its build from its
 # DdaPort).
 Unit = namedtuple("Unit", "names port_names")
-_CARD = ("fifo_depth", "coord_width", "clock_hz", "variants", "device", *PCI_IDS)
+_CARD = ("fifo_depth", "coord_width", "clock_hz", "variants", "device", "axes", *PCI_IDS)
 UNITS = {
     "dda_arc": Unit(("coord_width", "variants"), ("coord_width", "variants")),
     "pci_slave": Unit((*PCI_IDS, "io_bar_bits", "mem_bar_bits", "device"), ("io_bar_bits", "mem_bar_bits")),
-    "regs_fifo": Unit(("fifo_depth", "clock_hz", "device", "coord_width", "variants"), ("coord_width", "variants")),
-    "card": Unit(_CARD, ()),
-    "top": Unit(_CARD, ()),
+    "regs_fifo": Unit(("fifo_depth", "clock_hz", "device", "coord_width", "variants", "axes"),
+                      ("coord_width", "variants", "axes")),
+    "card": Unit(_CARD, ("axes",)),
+    "top": Unit(_CARD, ("axes",)),
 }
 # Sub-packages of rtl/ that hold units below the tops (``unit_block`` finds a unit there too).
 SUB_PACKAGES = ("pci", "dda", "regs", "machine")
@@ -85,19 +86,6 @@ def unit_build(values, unit):
             raise
         raise ParameterError(f"{error.problem}; without --device the {unit} is built for {device}",
                              error.parameter) from None
-
-
-# Build parameters the table already holds but the RTL does not build yet: the values it builds.
-NOT_BUILT_YET = {"axes": ((2,), "the N-axis card is not built yet: the RTL drives X and Y only; "
-                                "the models and the host plan for N axes (docs/axes.md)")}
-
-
-def check_built(values):
-    """ParameterError if ``values`` asks for a build the RTL cannot make yet."""
-    for name, (built, why) in NOT_BUILT_YET.items():
-        if name in values and values[name] not in built:
-            raise ParameterError(f"must be {' or '.join(map(str, built))} for now, not {values[name]}: {why}",
-                                 PARAMETERS[name])
 
 
 def unit_builds(values):
@@ -259,7 +247,6 @@ def convert_all(out_dir=GEN_DIR, **values):
     replaces ``out_dir`` only once all are written (and is removed if not).
     """
     builds = unit_builds(values)
-    check_built(values)
     out_dir = check_output(out_dir)
     blocks = {unit: unit_instance(unit, builds[unit]) for unit in UNITS}
     out_dir.parent.mkdir(parents=True, exist_ok=True)
@@ -305,9 +292,6 @@ def _parser():
                              "C headers in it (default: gen/)")
     for parameter in PARAMETERS.values():
         text = parameter.describe()
-        if parameter.name in NOT_BUILT_YET:
-            built, why = NOT_BUILT_YET[parameter.name]
-            text += f"; built for now: {' or '.join(map(str, built))} ({why})"
         parser.add_argument(parameter.option, type=_argument_type(parameter), default=None,
                             metavar="VALUE" if parameter.choices is None else "{" + ",".join(parameter.choices) + "}",
                             help=text.replace("%", "%%"))
@@ -333,7 +317,6 @@ def main(argv=None):
     values = {name: getattr(args, name) for name in PARAMETERS if getattr(args, name) is not None}
     try:
         unit_builds(values)
-        check_built(values)
         check_output(args.out)
     except ParameterError as error:
         parser.error(f"argument {error.parameter.option}: {error.problem}" if error.parameter else str(error))

@@ -75,7 +75,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     if (dda.coord_width, variants_choice(dda.variants)) != (build.coord_width, build.variants):
         raise ValueError(f"regs_fifo: dda is a {dda.coord_width}-bit DdaPort of the variants "
                          f"{variants_choice(dda.variants)}, the build says {build.coord_width} and {build.variants}")
-    fifo_depth = build.fifo_depth
+    if pins.axes != build.axes:
+        raise ValueError(f"regs_fifo: pins of {pins.axes} axes, the build says {build.axes}")
+    fifo_depth, axes = build.fifo_depth, build.axes
     specs = regmap.REGISTERS
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
@@ -111,17 +113,21 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
     pulses = PulseCommand()
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
-    requests, granted = AxisPulses(), AxisPulses()
+    # every axis's step requests; the DDA's ``steps`` and the direct pulses drive X and Y
+    requests, granted = AxisPulses(axes), AxisPulses(axes)
+    requested = ConcatSignal(*reversed([requests.step(axis) for axis in range(axes)]))
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
     home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
     home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
     step_mode = values["STEP_MODE"]   # named at this level, as the formal harnesses know it
-    outputs = PulseControl(clear=pulse_clear, clear_position=clear_position, zero=home_zero, width=values["STEP_WIDTH"],
-                           space=values["STEP_SPACE"], mode=step_mode,
+    # homing zeroes X or Y (HOME.AXIS): zero_axes widens its bits to every axis's
+    zero = home_zero if axes == len(home_zero) else Signal(intbv(0)[axes:])
+    outputs = PulseControl(axes, clear=pulse_clear, clear_position=clear_position, zero=zero,
+                           width=values["STEP_WIDTH"], space=values["STEP_SPACE"], mode=step_mode,
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
     out_ready, out_active = outputs.ready, outputs.active
-    position = StepPositions()
+    position = StepPositions(axes)
     direct = [DirectPulseCommand(clear=direct_clear, remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
     settled, direct_ready = Signal(bool(0)), Signal(bool(1))   # guard.held; direct pulses wait while stopping
     direct_out = [StepRequest(ready=direct_ready) for _ in "XY"]
@@ -285,6 +291,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     def copy_level():   # a FIFO of 2**15 words: the level fills the field
         level_wide.next = fifo_level
 
+    zero_pad = axes - len(home_zero)
+
+    @always_comb
+    def zero_axes():
+        zero.next = concat(intbv(0)[zero_pad:], home_zero)
+
     position_y = position.y
     direct_busy_x, direct_busy_y = direct_busy
     direct_request_x, direct_request_y = direct_request
@@ -293,7 +305,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     @always_seq(clock.posedge, reset=reset)
     def outputs_before():
         # registered, so the pulse queue's logic does not reach the sequencer's issue
-        requested_before.next = requests.step_x or requests.step_y
+        requested_before.next = requested != 0
         out_active_before.next = out_active
 
     @always_seq(clock.posedge, reset=reset)
@@ -306,7 +318,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         pulse_busy.next = direct_busy_x or direct_busy_y
         # a step request is not yet in the pulse queue in its own clock, nor seen
         # in out_active_before in the next: both clocks are covered by the requests
-        outputs_busy.next = requests.step_x or requests.step_y or requested_before or out_active_before
+        outputs_busy.next = requested != 0 or requested_before or out_active_before
         hold.next = not out_ready
         dda.advance.next = tick and out_ready and motion_run
         any_busy.next = seq_busy or direct_busy_x or direct_busy_y or out_active or dda.busy or home.busy
@@ -321,6 +333,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
               pulse_activity,
               merge_requests, widen_level if level_pad else copy_level]
+    if zero is not home_zero:
+        units.append(zero_axes)
     for axis, name in enumerate("XY"):
         units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
                                   seq_load, (pulses.count_x, pulses.count_y)[axis], halt, axis_load[axis],
@@ -363,9 +377,10 @@ def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, ha
     return choose_source
 
 
-def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants):
+def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
-    ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``."""
+    ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``,
+    ``pins`` of ``axes`` axes (``steps``, the DDA's, has X and Y)."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(),
+                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(axes),
                 irq=Signal(bool(0)), core_clear=Signal(bool(0)))

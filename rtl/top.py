@@ -21,7 +21,8 @@ def top(clock, reset, pci_pins, motor, *, build=Build.for_unit("top")):
 
     Ports: ``clock`` PCI CLK, ``reset`` RST# (``card_reset()``), ``pci_pins``
     (``PciPins``: AD, C/BE#, PAR, FRAME#, IRDY#, TRDY#, DEVSEL#, STOP#, IDSEL,
-    PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR).
+    PERR#, SERR#, INTA# as on the bus), ``motor`` (``MotorPins``: STEP/DIR of
+    every axis of the build, the machine's inputs).
     Parameters: those of ``card`` (``models/parameters.py``).  ``device``
     ``ice40`` (the top's default): the PCI boundary flip-flops are the iCE40
     I/O cells' registers (``rtl/pci/pci_pads.py``; the target is told so) and
@@ -38,9 +39,10 @@ def top(clock, reset, pci_pins, motor, *, build=Build.for_unit("top")):
     return pads, core
 
 
-def top_ports():
-    """Fresh ports of ``top`` for conversion and benches (no build parameter changes a port)."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins())
+def top_ports(axes=Build.axes):
+    """Fresh ports of ``top`` for conversion and benches: ``motor`` of ``axes`` axes (the build
+    parameter; no other changes a port)."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins(axes))
 
 
 if __name__ == "__main__":

@@ -48,7 +48,7 @@ module machine_harness #(
     wire homing0_axis, homing0_refused, homing0_not_found;
     wire [1:0] home_zero;
     wire requests_step_x, requests_step_y, requests_dir_x, requests_dir_y;
-    wire pulse_out0_request_step_x, pulse_out0_request_step_y;
+    wire machine_guard0_grant_x_granted_step, machine_guard0_grant_y_granted_step;
     wire [15:0] ramp_step;
     wire feed_held;
     wire [9:0] sync_fifo0_count;
@@ -58,7 +58,7 @@ module machine_harness #(
     wire [23:0] watchdog_left;
     wire [1:0] machine_control;
     wire [1:0] step_mode;
-    wire pulse_out0_pulse_x, pulse_out0_pulse_y;
+    wire pulse_out0_axis_x_pulse, pulse_out0_axis_y_pulse;
 
     regs_fifo dut (
 `include "regs_fifo_ports.vh"
@@ -70,10 +70,10 @@ module machine_harness #(
         .homing0_not_found(homing0_not_found), .home_zero(home_zero),
         .requests_step_x(requests_step_x), .requests_step_y(requests_step_y),
         .requests_dir_x(requests_dir_x), .requests_dir_y(requests_dir_y),
-        .pulse_out0_request_step_x(pulse_out0_request_step_x),
-        .pulse_out0_request_step_y(pulse_out0_request_step_y),
+        .machine_guard0_grant_x_granted_step(machine_guard0_grant_x_granted_step),
+        .machine_guard0_grant_y_granted_step(machine_guard0_grant_y_granted_step),
         .ramp_step(ramp_step), .machine_control(machine_control), .step_mode(step_mode),
-        .pulse_out0_pulse_x(pulse_out0_pulse_x), .pulse_out0_pulse_y(pulse_out0_pulse_y),
+        .pulse_out0_axis_x_pulse(pulse_out0_axis_x_pulse), .pulse_out0_axis_y_pulse(pulse_out0_axis_y_pulse),
         .feed_held(feed_held), .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM
         .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
@@ -151,7 +151,7 @@ module machine_harness #(
         // STEP_MODE as reset (step/dir: no bus write of it here), so the
         // STEP pins carry the pulse outputs' own pulses
         minv_step_dir: assert(step_mode == model_step_mode && step_mode == 0
-                              && pins_step_x == pulse_out0_pulse_x && pins_step_y == pulse_out0_pulse_y);
+                              && pins_step_x == pulse_out0_axis_x_pulse && pins_step_y == pulse_out0_axis_y_pulse);
     end
 
     // ------------------------------------------------------------ E-stop and the stop latch
@@ -207,11 +207,11 @@ module machine_harness #(
     wire ramp_off = model_ramp_step == 0 && p_ramp == 0;
     always @(posedge clock) if (judged) begin
         if (towards != 0 && ramp_off) begin
-            ms_limit_dropped: assert(!pulse_out0_request_step_x && !pulse_out0_request_step_y);
+            ms_limit_dropped: assert(!machine_guard0_grant_x_granted_step && !machine_guard0_grant_y_granted_step);
         end
         if (towards == 0 && !guard_stopped && !conditioning_active[0]) begin
-            ms_away_passes: assert(pulse_out0_request_step_x == requests_step_x
-                                   && pulse_out0_request_step_y == requests_step_y);
+            ms_away_passes: assert(machine_guard0_grant_x_granted_step == requests_step_x
+                                   && machine_guard0_grant_y_granted_step == requests_step_y);
         end
         if (p_towards != 0 && p_ramp == 0 && pp_ramp == 0 && !p_halted && !p_stopping) begin
             ms_limit_stops: assert(guard_stopped && (machine_guard0_guard_reason == 2'd2

@@ -4,26 +4,37 @@ from myhdl import Signal, intbv, modbv
 from models import instructions as isa
 from models import registers as regmap
 from models.dda_build import COORD_WIDTH
-from rtl.interfaces.bundle import adopt
+from models.parameters import AXES
+from rtl.interfaces.bundle import adopt, axis_suffixes
 from rtl.interfaces.dda import DdaPort
 
 
 class MotorPins:
-    """The machine's pins: STEP and DIR of the two axes as they leave the
-    card (levels, straight from flip-flops; ``dir_*`` already carries the
-    polarity), ``drive_enable`` (out, from a flip-flop: the drives may
-    run), and the machine's inputs, in the order of ``MACHINE_INPUTS``
-    (E-stop, the limit switches, the home switches: pin levels as wired,
-    asynchronous; ``rtl/machine/input_filter.py`` conditions them)."""
+    """The machine's pins: STEP and DIR of each of the ``axes`` axes as they
+    leave the card (``step_x``, ``dir_x``, ``step_y``, ``dir_y``, then
+    ``step_z``, ``dir_z``, ... as ``models/axes.py`` names them; levels,
+    straight from flip-flops; ``dir_*`` already carries the polarity),
+    ``drive_enable`` (out, from a flip-flop: the drives may run), and the
+    machine's inputs, in the order of ``MACHINE_INPUTS`` (E-stop, the limit
+    switches, the home switches: pin levels as wired, asynchronous;
+    ``rtl/machine/input_filter.py`` conditions them)."""
 
-    def __init__(self):
-        self.step_x = Signal(bool(0))
-        self.dir_x = Signal(bool(0))
-        self.step_y = Signal(bool(0))
-        self.dir_y = Signal(bool(0))
+    def __init__(self, axes=AXES.default):
+        self.axes = axes
+        for suffix in axis_suffixes(axes):
+            setattr(self, f"step_{suffix}", Signal(bool(0)))
+            setattr(self, f"dir_{suffix}", Signal(bool(0)))
         self.drive_enable = Signal(bool(0))
         for name in MACHINE_INPUTS:
             setattr(self, name, Signal(bool(0)))
+
+    def step(self, axis):
+        """The STEP pin of axis ``axis`` (0 X, 1 Y, ...)."""
+        return getattr(self, f"step_{axis_suffixes(self.axes)[axis]}")
+
+    def dir(self, axis):
+        """The DIR pin of axis ``axis``."""
+        return getattr(self, f"dir_{axis_suffixes(self.axes)[axis]}")
 
     def inputs(self):
         """The input pins, in the order of ``MACHINE_INPUTS``."""
@@ -153,34 +164,45 @@ class ReadChain:
 
 
 class PulseControl:
-    """Settings and status of the pulse outputs (``rtl/regs/pulse_out.py``).
+    """Settings and status of the pulse outputs (``rtl/regs/pulse_out.py``) of ``axes`` axes.
 
     The registers drive ``clear`` (drop the queue), ``clear_position``
-    (zero the positions), ``zero`` (bit 0 X, bit 1 Y: zero that axis's
+    (zero the positions), ``zero`` (bit i axis i: zero that axis's
     position, counting a step that rises in that clock), ``width``, ``space``, ``setup`` and ``hold``
     (STEP_WIDTH, STEP_SPACE, DIR_SETUP, DIR_HOLD, in clocks), ``mode`` (STEP_MODE) and
-    ``polarity_x``/``polarity_y`` (DIR_POLARITY); the pulse outputs drive ``ready`` (the queue takes the
-    steps on their way), ``active`` (a step is queued or on the pins) and ``pulsing`` (a STEP pulse
-    starts at the coming edge, is high inside or is high on the pins: the machine guard keeps
-    DRIVE_ENABLE for it).
+    ``polarity_x``, ``polarity_y``, ... one an axis (DIR_POLARITY); the pulse outputs drive ``ready``
+    (the queue takes the steps on their way), ``active`` (a step is queued or on the pins) and
+    ``pulsing`` (a STEP pulse starts at the coming edge, is high inside or is high on the pins: the
+    machine guard keeps DRIVE_ENABLE for it).
     """
 
-    def __init__(self, **given):
-        adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
+    def __init__(self, axes=AXES.default, **given):
+        self.axes = axes
+        polarities = {f"polarity_{suffix}": Signal(bool(0)) for suffix in axis_suffixes(axes)}
+        adopt(self, given, clear=Signal(bool(0)), clear_position=Signal(bool(0)), zero=Signal(intbv(0)[axes:]),
                width=Signal(intbv(1)[TIMING_BITS:]), space=Signal(intbv(1)[TIMING_BITS:]),
                setup=Signal(intbv(1)[TIMING_BITS:]), hold=Signal(intbv(1)[TIMING_BITS:]),
-               mode=Signal(intbv(0)[STEP_MODE_BITS:]), polarity_x=Signal(bool(0)), polarity_y=Signal(bool(0)),
+               mode=Signal(intbv(0)[STEP_MODE_BITS:]), **polarities,
                ready=Signal(bool(1)), active=Signal(bool(0)), pulsing=Signal(bool(0)))
+
+    def polarity(self, axis):
+        """Axis ``axis``'s DIR polarity (1 inverts its DIR pin)."""
+        return getattr(self, f"polarity_{axis_suffixes(self.axes)[axis]}")
 
 
 class StepPositions:
-    """The step counters of the two axes, driven by the pulse outputs:
-    ``x``, ``y`` (signed 32 bits, wrapping), counted at the edge where a
-    STEP pin rises."""
+    """The step counters of the ``axes`` axes, driven by the pulse outputs:
+    ``x``, ``y``, ``z``, ... (signed 32 bits, wrapping), counted at the edge
+    where a STEP pin rises."""
 
-    def __init__(self):
-        self.x = Signal(modbv(0, min=-(1 << 31), max=1 << 31))
-        self.y = Signal(modbv(0, min=-(1 << 31), max=1 << 31))
+    def __init__(self, axes=AXES.default):
+        self.axes = axes
+        for suffix in axis_suffixes(axes):
+            setattr(self, suffix, Signal(modbv(0, min=-(1 << 31), max=1 << 31)))
+
+    def of(self, axis):
+        """The step counter of axis ``axis``."""
+        return getattr(self, axis_suffixes(self.axes)[axis])
 
 
 class RampSettings:

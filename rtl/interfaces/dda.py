@@ -3,6 +3,8 @@ from myhdl import Signal, intbv, modbv
 
 from models.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width, left_width,
                               threshold_width, variant_set)
+from models.parameters import AXES
+from rtl.interfaces.bundle import axis_suffixes
 
 
 class DdaPort:
@@ -262,11 +264,49 @@ class DdaStep:
 
 
 class AxisPulses:
-    """Step requests for the two axes: ``step_*`` is high for one clock per
-    step, ``dir_*`` (1: positive direction) is valid in that clock."""
+    """Step requests for ``axes`` axes (``step_x``, ``step_y``, ...,
+    ``dir_x``, ``dir_y``, ...; ``models/axes.py`` names them): ``step_*`` is
+    high for one clock per step, ``dir_*`` (1: positive direction) is valid
+    in that clock."""
 
-    def __init__(self):
-        self.step_x = Signal(bool(0))
-        self.step_y = Signal(bool(0))
-        self.dir_x = Signal(bool(0))
-        self.dir_y = Signal(bool(0))
+    def __init__(self, axes=AXES.default):
+        self.axes = axes
+        for kind in ("step", "dir"):
+            for suffix in axis_suffixes(axes):
+                setattr(self, f"{kind}_{suffix}", Signal(bool(0)))
+
+    def step(self, axis):
+        """Axis ``axis``'s step request (0 X, 1 Y, ...)."""
+        return getattr(self, f"step_{axis_suffixes(self.axes)[axis]}")
+
+    def dir(self, axis):
+        """Axis ``axis``'s direction."""
+        return getattr(self, f"dir_{axis_suffixes(self.axes)[axis]}")
+
+
+class LinearPort:
+    """The N-axis line's port (``rtl/dda/dda_linear.py``), for ``axes`` axes
+    of ``coord_width``-bit signed displacements.
+
+    The driver gives ``load`` (one clock) with each axis's
+    ``magnitude_<axis>`` (|d|, as wide as the coordinates: |-2**(W-1)| fits)
+    and ``positive_<axis>`` (the sign: 1 for d >= 0), and ``advance`` (one
+    iteration in each clock it is high, the feed rate's tick); the unit
+    drives ``busy`` (iterations left) and ``left`` (how many: the threshold
+    T = max |d| less those done, exactly the iterations the line has left)."""
+
+    def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
+        self.axes = axes
+        self.load, self.advance, self.busy = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+        for suffix in axis_suffixes(axes):
+            setattr(self, f"magnitude_{suffix}", Signal(intbv(0)[coord_width:]))
+            setattr(self, f"positive_{suffix}", Signal(bool(0)))
+        self.left = Signal(intbv(0)[coord_width:])
+
+    def magnitude(self, axis):
+        """Axis ``axis``'s |d| (0 X, 1 Y, ...)."""
+        return getattr(self, f"magnitude_{axis_suffixes(self.axes)[axis]}")
+
+    def positive(self, axis):
+        """Axis ``axis``'s direction (1: d >= 0)."""
+        return getattr(self, f"positive_{axis_suffixes(self.axes)[axis]}")

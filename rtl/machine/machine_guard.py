@@ -2,8 +2,9 @@
 from myhdl import Signal, always_comb, always_seq, block, concat, intbv
 
 from models import registers as regmap
+from models.parameters import AXES
 from rtl.interfaces import (INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X, INPUT_LIMIT_POS_Y,
-                            AxisPulses, MachineGuard, card_reset)
+                            AxisPulses, MachineGuard, axis_suffixes, card_reset, named)
 
 REASON_ESTOP, REASON_WATCHDOG, REASON_LIMIT = (regmap.STOP_REASONS.index(name)
                                                for name in ("ESTOP", "WATCHDOG", "LIMIT"))
@@ -23,7 +24,8 @@ def machine_guard(clock, reset, guard, request, granted):
     1. ESTOP: the filtered E-stop input is active.
     2. WATCHDOG: ``watchdog_left`` reaches 0.  A ``watchdog_load`` sets it
        to ``watchdog_timeout`` (0: off); it counts down by one every clock.
-    3. LIMIT: a step request towards an active limit (``limits``: which).
+    3. LIMIT: a step request towards an active limit (``limits``: which;
+       X and Y have limit inputs).
 
     A WATCHDOG or LIMIT cause while ``ramp`` is high (RAMP_STEP not 0)
     starts a decelerated stop instead: ``stopping`` rises at the edge after
@@ -34,7 +36,7 @@ def machine_guard(clock, reset, guard, request, granted):
     still latches at once.
 
     ``halt`` (stopped, or the E-stop input active: a register's output,
-    so at once) holds back every step request; without a ramp a request
+    so at once) holds back every step request, of every axis; without a ramp a request
     towards an active limit is dropped too, whole, so the step that would
     hit the limit never reaches the pins, while requests away from it pass.
     ``clear_stop`` releases the latch (``reason`` and ``limits`` read 0
@@ -71,9 +73,14 @@ def machine_guard(clock, reset, guard, request, granted):
         stopped       _____________ .. _______/~~~~~
         drive_enable  ~~~~~~~~~~~~~ .. ~~~~~~~\\_____
     """
+    if granted.axes != request.axes:
+        raise ValueError(f"machine_guard: request has {request.axes} axes, granted {granted.axes}")
     limit_bits = len(guard.limits)
     hits = Signal(intbv(0)[limit_bits:])
-    estop, expired = Signal(bool(0)), Signal(bool(0))
+    estop, expired, passes = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    grants = [named(f"grant_{suffix}", _grant(request.step(axis), request.dir(axis), passes, granted.step(axis),
+                                               granted.dir(axis)))
+              for axis, suffix in enumerate(axis_suffixes(request.axes))]
 
     @always_comb
     def causes():
@@ -88,11 +95,7 @@ def machine_guard(clock, reset, guard, request, granted):
     @always_comb
     def gate():
         guard.halt.next = guard.stopped or estop
-        passes = not (guard.stopped or estop) and (hits == 0 or guard.ramp)
-        granted.step_x.next = request.step_x and passes
-        granted.step_y.next = request.step_y and passes
-        granted.dir_x.next = request.dir_x
-        granted.dir_y.next = request.dir_y
+        passes.next = not (guard.stopped or estop) and (hits == 0 or guard.ramp)
 
     @always_seq(clock.posedge, reset=reset)
     def latch():
@@ -136,10 +139,22 @@ def machine_guard(clock, reset, guard, request, granted):
         elif guard.watchdog_left != 0:
             guard.watchdog_left.next = guard.watchdog_left - 1
 
-    return causes, gate, latch, watchdog
+    return grants, causes, gate, latch, watchdog
 
 
-def machine_guard_ports():
-    """Fresh ports of ``machine_guard`` for conversion and benches."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), guard=MachineGuard(), request=AxisPulses(),
-                granted=AxisPulses())
+@block
+def _grant(request_step, request_dir, passes, granted_step, granted_dir):
+    """One axis's step request through the guard's gate: it ``passes`` or is held back."""
+
+    @always_comb
+    def pass_step():
+        granted_step.next = request_step and passes
+        granted_dir.next = request_dir
+
+    return pass_step
+
+
+def machine_guard_ports(axes=AXES.default):
+    """Fresh ports of ``machine_guard`` for conversion and benches, of ``axes`` axes."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), guard=MachineGuard(), request=AxisPulses(axes),
+                granted=AxisPulses(axes))

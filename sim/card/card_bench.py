@@ -22,7 +22,7 @@ BUS_GROUPS = {"bus": ["local_we", "local_re", "local_space", "local_addr", "loca
 STEP_PINS = ["pin_capture.pins_step_x", "pin_capture.pins_step_y"]
 PINS = [f"pin_capture.pins_{line}" for line in ("step_x", "dir_x", "step_y", "dir_y")]
 OPERANDS = [f"sequencer.operand_{index}" for index in range(isa.MAX_OPERANDS)]
-POSITIONS = ["pulse_out.position_x", "pulse_out.position_y"]
+POSITIONS = ["pulse_out.axis_x.position", "pulse_out.axis_y.position"]
 MOTION_GROUPS = {
     "STEP/DIR pins": PINS,
     "position (steps)": POSITIONS,

@@ -5,7 +5,9 @@ generated ``card.v`` and as the iCE40 top (``top.v`` with its pads) in
 Icarus, and the committed default build in ``gen/``: the host enumerates
 the card, reads ID, CLOCK_HZ, FIFO_SIZE and BUILD over I/O, then runs a
 LINE through the FIFO (the smallest build's FIFO of two words is shorter
-than the command) and reads the position back.  The expected words are
+than the command) and reads the position back.  The chosen card and the
+smallest are built with more axes than two (BUILD.AXES; X and Y move as on
+the two-axis card).  The expected words are
 written out here from the build parameters and the documented encodings
 (docs/registers.md), not taken from the register table's reset values.
 """
@@ -24,7 +26,8 @@ from sim.pci.bench import TARGET_DEVICE, PciBench
 DEVICE = 0
 DEFAULT = dict(clock_hz=33_333_333, fifo_depth=512, coord_width=24, variants="improved,precise")
 CHOSEN = dict(clock_hz=25_000_000, fifo_depth=16, coord_width=20, variants="all")
-SMALLEST = dict(clock_hz=1, fifo_depth=4, coord_width=14, variants="improved,precise")
+SMALLEST = dict(clock_hz=1, fifo_depth=4, coord_width=14, variants="improved,precise", axes=6)
+CHOSEN_AXES = dict(CHOSEN, axes=3)
 MOVE = (5, -3)
 VARIANT_BITS = {"improved,precise": 0b1100, "all": 0b1111}   # bit n: ARC.VARIANT n
 DEVICE_CODES = {"generic": 0, "ice40": 1}
@@ -35,7 +38,7 @@ def expected_words(build, device):
     return {"ID": 0xDDAC << 16 | 0x0201,   # ID.VERSION 2.1
             "CLOCK_HZ": build["clock_hz"],
             "FIFO_SIZE": build["fifo_depth"],
-            "BUILD": (build["coord_width"] | 2 << 8 | VARIANT_BITS[build["variants"]] << 16
+            "BUILD": (build["coord_width"] | build.get("axes", 2) << 8 | VARIANT_BITS[build["variants"]] << 16
                       | DEVICE_CODES[device] << 24)}
 
 
@@ -50,7 +53,7 @@ def card_under_test(kind, build, device, tmp_path):
             harness = TopHarness(verilog, idsel_bit=16 + TARGET_DEVICE)
             return harness.card, [(top_on_bus, (bench.clock, bench.reset, bench.host.agent, harness,
                                                 MotorPins()))]
-        ports = card_ports()
+        ports = card_ports(build.get("axes", 2))
         ports["clock"], ports["reset"] = bench.clock, bench.reset
         if kind == "myhdl":
             return ports["pci"], [(card, (), dict(ports, build=Build(**params)))]
@@ -91,10 +94,10 @@ def read_build(kind, build, device, tmp_path):
 
 
 @pytest.mark.parametrize("kind, build, device", [
-    pytest.param("myhdl", CHOSEN, "ice40", id="myhdl-chosen", marks=pytest.mark.slow(
+    pytest.param("myhdl", CHOSEN_AXES, "ice40", id="myhdl-chosen", marks=pytest.mark.slow(
         reason="the chosen build runs as card.v by default; MyHDL reads the smallest one")),
     pytest.param("myhdl", SMALLEST, "generic", id="myhdl-smallest"),
-    pytest.param("card.v", CHOSEN, "generic", id="card_v-chosen"),
+    pytest.param("card.v", CHOSEN_AXES, "generic", id="card_v-chosen"),
     pytest.param("top.v", CHOSEN, "ice40", id="top_v-chosen", marks=pytest.mark.slow(
         reason="another conversion of the chosen build; gen/top.v covers the top's path by default")),
     pytest.param("gen/card.v", DEFAULT, "generic", id="gen-card_v"),

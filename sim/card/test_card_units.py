@@ -11,7 +11,7 @@ from myhdl import block
 
 from models.card_model import DirectPulseModel, FeedRateModel, FifoModel, PulseOutModel
 from models.registers import RATE_MAX, RATE_ONE
-from rtl.interfaces import LocalBus
+from rtl.interfaces import LocalBus, axis_suffixes
 from rtl.regs.direct_pulse import direct_pulse, direct_pulse_ports
 from rtl.regs.feed_rate import feed_rate, feed_rate_ports
 from rtl.regs.pulse_out import pulse_out, pulse_out_ports
@@ -56,41 +56,49 @@ def _run(name, dut, ports, step, cycles, groups):
     return Waveform(vcd), cosim
 
 
+# the chance an axis steps in a clock that wants steps, and that its direction is positive
+STEP_CHANCES, DIR_CHANCES = (0.7, 0.5, 0.6, 0.4, 0.3, 0.5), (0.7, 0.4, 0.5, 0.6, 0.5, 0.3)
+
+
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
-@pytest.mark.parametrize("seed", [1, 2])
-def test_pulse_out_timing(seed, cosim):
+@pytest.mark.parametrize("seed, axes", [(1, 2), (2, 2), (3, 3)])
+def test_pulse_out_timing(seed, axes, cosim):
     """Random steps and settings (STEP_WIDTH, STEP_SPACE, DIR_SETUP, DIR_HOLD,
     DIR_POLARITY, and STEP_MODE: step/dir, up/down, quadrature, changed with
-    the queue empty as docs/registers.md asks) against the model every clock."""
+    the queue empty as docs/registers.md asks) against the model every clock,
+    on the pulse outputs of two axes and of three (every axis's pins and
+    position: the queue and the timing are shared, the pins per axis)."""
     rng = random.Random(seed)
-    ports = pulse_out_ports()
+    ports = pulse_out_ports(axes=axes)
     request, control, pins, position = ports["request"], ports["control"], ports["pins"], ports["position"]
-    model = PulseOutModel()
+    model = PulseOutModel(axes=axes)
     timing = {}
     rises, pulses = [], []   # rises of the STEP_X pin; X pulses, by the mode they left in
+    every = range(axes)
 
     def step(index):
         if index == 0:
             model.clock()  # the first edge after reset, inputs idle
-        assert (bool(pins.step_x), bool(pins.step_y)) == model.step_pins, f"STEP at clock {index}"
-        assert (bool(pins.dir_x), bool(pins.dir_y)) == model.dir_pins, f"DIR at clock {index}"
-        assert [int(position.x), int(position.y)] == model.positions, f"clock {index}"
+        assert tuple(bool(pins.step(a)) for a in every) == model.step_pins, f"STEP at clock {index}"
+        assert tuple(bool(pins.dir(a)) for a in every) == model.dir_pins, f"DIR at clock {index}"
+        assert [int(position.of(a)) for a in every] == model.positions, f"clock {index}"
         assert bool(control.ready) == model.ready and bool(control.active) == model.active
         if index % 300 == 0:
             timing.update(width=rng.randint(1, 4), space=rng.randint(1, 6), setup=rng.randint(1, 4),
                           hold=rng.randint(1, 4))
-            timing["polarity"] = (rng.random() < 0.5, rng.random() < 0.5)
+            timing["polarity"] = tuple(rng.random() < 0.5 for _ in every)
         if index % 300 == 20:   # the queue has run empty (no requests since 280)
             timing["mode"] = (index // 300 + seed) % 3
         wanted = model.ready and rng.random() < 0.6 and index % 300 < 280
-        steps = (wanted and rng.random() < 0.7, wanted and rng.random() < 0.5)
-        dirs = (rng.random() < 0.7, rng.random() < 0.4)
+        steps = tuple(wanted and rng.random() < chance for chance in STEP_CHANCES[:axes])
+        dirs = tuple(rng.random() < chance for chance in DIR_CHANCES[:axes])
         flags = dict(clear=rng.random() < 0.005, clear_position=rng.random() < 0.003)
-        request.step_x.next, request.step_y.next = steps
-        request.dir_x.next, request.dir_y.next = dirs
+        for axis in every:
+            request.step(axis).next, request.dir(axis).next = steps[axis], dirs[axis]
         for key, value in dict(flags, **timing).items():
             if key == "polarity":
-                control.polarity_x.next, control.polarity_y.next = value
+                for axis in every:
+                    control.polarity(axis).next = value[axis]
             else:
                 getattr(control, key).next = value
         was_high, pulse_before = model.step_pins[0], model.pulses[0]
@@ -100,13 +108,15 @@ def test_pulse_out_timing(seed, cosim):
         if model.pulses[0] and not pulse_before:
             pulses.append(timing.get("mode", 0))
 
-    wave, cosim = _run(f"pulse_out_{seed}_{'icarus' if cosim else 'myhdl'}",
+    # the MyHDL trace names each axis's pins in its instance axis_x, axis_y, ... (rtl/regs/pulse_out.py)
+    axis_pins = [f"axis_{suffix}.{name}" for suffix in axis_suffixes(axes) for name in ("pin_step", "pin_dir")]
+    wave, cosim = _run(f"pulse_out_{seed}_{axes}_{'icarus' if cosim else 'myhdl'}",
                        _dut(pulse_out, "pulse_out", ports, cosim), ports, step, 1200,
-                       {"request": ["request_step_x", "request_dir_x", "control_ready"],
-                        "pins": ["pins_step_x", "pins_dir_x", "pins_step_y", "pins_dir_y", "position_x"]})
+                       {"request": ["request_steps", "request_dirs", "control_ready"],
+                        "pins": [*axis_pins, "axis_x.position"]})
     assert all(pulses.count(mode) > 20 for mode in range(3)), "every STEP_MODE carried steps"
     if not cosim:
-        assert len(wave.edges("pins_step_x", "1")) == len(rises)
+        assert len(wave.edges("axis_x.pin_step", "1")) == len(rises)
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])

@@ -77,3 +77,15 @@ def test_a_folder_of_other_files_is_refused(original, tmp_path):
     with pytest.raises(ValueError, match="holds files of something else"):
         equivalence.check(UNIT, original, original, work=tmp_path)
     assert kept.read_text() == "not a miter's"
+
+
+def test_a_renamed_register_is_paired_by_name(original, tmp_path):
+    """``rate`` renamed ``path_rate``: it holds its value between ticks, so
+    unpaired the induction of one clock starts the two copies from different
+    rates and fails; paired (``pairs``) the same k = 1 closes."""
+    new = changed(original, tmp_path, (r"\brate\b", "path_rate"))
+    unpaired = equivalence.check(UNIT, original, new, mode="prove", depth=1, work=tmp_path / "unpaired")
+    assert not unpaired.equivalent and "rate" not in unpaired.matched, unpaired.text()
+    paired = equivalence.check(UNIT, original, new, mode="prove", depth=1, work=tmp_path / "paired",
+                               pairs=[("rate", "path_rate")])
+    assert paired.equivalent and "rate" in paired.matched, paired.text()

@@ -86,13 +86,14 @@ endmodule
 # depth.  pci_slave (20 mutants): m000 (bit 14 of the parity fold inverted:
 # PAR wrong), m001 (the Signaled System Error status bit stuck at 1), m010
 # (a bit of the next bus state stuck at 0) by the protocol rules.
-# regs_fifo (16 mutants): m001 (bit 5 of DIR_HOLD's honoured write stuck at
-# 0), m003 (INPUT_TICK's out-of-range flag stuck at 1: CLAMPED without a
-# clamp) by the register table's rules.
+# regs_fifo (16 mutants; the list follows the netlist, so a change of
+# regs_fifo.v picks them anew): m006 (bit 14 of PULSE_COUNT_X's read data
+# stuck at 1), m015 (STEP_SPACE's address decode stuck at 1: it answers
+# every read) by the register table's rules.
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
 FIXED_MUTANTS = (("pci_slave", 0, "pci_protocol", 12), ("pci_slave", 1, "pci_protocol", 12),
-                 ("pci_slave", 10, "pci_protocol", 12), ("regs_fifo", 1, "regs_fifo_table", 10),
-                 ("regs_fifo", 3, "regs_fifo_table", 10))
+                 ("pci_slave", 10, "pci_protocol", 12), ("regs_fifo", 6, "regs_fifo_table", 10),
+                 ("regs_fifo", 15, "regs_fifo_table", 10))
 MITER_DEPTH = 12
 
 
@@ -108,7 +109,7 @@ def mutation_lists(tmp_path_factory):
 
 
 # one fixed mutant per unit by default; the others judge the same way (slow set)
-DEFAULT_MUTANTS = (("pci_slave", 0), ("regs_fifo", 3))
+DEFAULT_MUTANTS = (("pci_slave", 0), ("regs_fifo", 15))
 
 
 @pytest.mark.parametrize("unit, index, judge, depth", [

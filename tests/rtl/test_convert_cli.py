@@ -14,7 +14,7 @@ import sys
 
 import pytest
 
-from models.parameters import PARAMETERS, ParameterError
+from models.parameters import PARAMETERS
 from rtl import convert
 from rtl.convert import C_HEADER, ROOT, UNITS, convert_all, main, unit_builds
 
@@ -22,7 +22,7 @@ PROG = "python -m rtl.top"
 
 # option -> (words --help must show, values just inside the range)
 RANGES = {
-    "--axes": ("2..6", ["2", "6"]),  # X Y Z A B C (issue 26); the converter builds 2 for now (below)
+    "--axes": ("2..6", ["2", "6"]),  # X Y Z A B C (issue 26); tests/rtl/test_lint.py converts 3 and 6
     "--coord-width": ("14..29", ["14", "29"]),
     "--fifo-depth": ("a power of two, 4..32,768", ["4", "4096"]),
     "--clock-hz": ("1..33,333,333", ["1", "33333333"]),
@@ -129,16 +129,6 @@ def test_fifo_deeper_than_the_ice40_block_ram_is_refused_for_ice40(capsys, tmp_p
     assert "the top is built for ice40" in line
     # the generic build has no such limit
     assert unit_builds({"device": "generic", "fifo_depth": 32768})["top"].fifo_depth == 32768
-
-
-@pytest.mark.parametrize("axes", ["3", "6"])
-def test_an_n_axis_card_is_refused_until_its_rtl_exists(axes, capsys, tmp_path):
-    out = tmp_path / "out"
-    line = refused_in_process(capsys, "--convert", "--out", str(out), "--axes", axes)
-    assert "argument --axes:" in line and "not built yet" in line and "2" in line
-    assert not out.exists() and not leftovers(tmp_path)
-    with pytest.raises(ParameterError, match="not built yet"):
-        convert_all(out, axes=int(axes))
 
 
 def test_out_naming_a_file_is_one_line(capsys, tmp_path):

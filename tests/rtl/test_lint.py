@@ -1,9 +1,10 @@
 """Every Verilog file of every build is clean under ``verilator --lint-only -Wall``
 and compiles in Icarus; the ``generic`` build has no vendor primitive.
 
-Builds: ``gen/`` (the default: units and card generic, the top for iCE40),
-and, converted into a work folder by the command line, ``generic`` at the
-top of the parameter ranges and ``ice40`` at the bottom.  Files with iCE40
+Builds: ``gen/`` (the default: units and card generic, the top for iCE40,
+two axes), and, converted into a work folder by the command line,
+``generic`` at the top of the parameter ranges (six axes) and ``ice40`` at
+the bottom (but three axes: the smallest card with more than X and Y).  Files with iCE40
 LUTs are linted twice: for simulators and with ``SYNTHESIS`` defined (the
 ``SB_LUT4`` branch).  Waivers live in ``tests/verilator.vlt``, each with its
 reason.  The iCE40 cells (``SB_IO``, ``SB_LUT4``) are given to both tools as
@@ -23,9 +24,12 @@ WAIVERS = ROOT / "tests" / "verilator.vlt"
 BUILDS = {
     "gen": None,
     "generic": ["--device", "generic", "--coord-width", "29", "--fifo-depth", "32768", "--variants", "all",
-                "--clock-hz", "1", "--vendor-id", "0xFFFE"],
-    "ice40": ["--device", "ice40", "--coord-width", "14", "--fifo-depth", "4", "--clock-hz", "33333333"],
+                "--clock-hz", "1", "--vendor-id", "0xFFFE", "--axes", "6"],
+    "ice40": ["--device", "ice40", "--coord-width", "14", "--fifo-depth", "4", "--clock-hz", "33333333",
+              "--axes", "3"],
 }
+# build -> the suffixes of its STEP/DIR pins, as docs/axes.md names the axes
+AXIS_PINS = {"gen": "xy", "generic": "xyzabc", "ice40": "xyz"}
 SOURCES = [(build, unit) for build in BUILDS for unit in UNITS]
 # Each build is converted once per worker: the module's tests share one.
 pytestmark = pytest.mark.xdist_group("lint")
@@ -99,10 +103,14 @@ VENDOR_CELLS = {
 
 
 @pytest.mark.parametrize("build", sorted(BUILDS))
-def test_vendor_primitives_only_where_the_device_asks(build, build_folders):
+def test_vendor_primitives_only_where_the_device_asks_and_every_axis_has_pins(build, build_folders):
     folder = build_folders(build)
     for unit in UNITS:
         text = (folder / f"{unit}.v").read_text()
         cells = set(re.findall(r"^\s*(SB_\w+)\s*#?\s*\(", text, re.MULTILINE))
         assert cells == VENDOR_CELLS[build].get(unit, set()), f"{build}/{unit}.v: {sorted(cells)}"
         assert ("`ifdef SYNTHESIS" in text) == ("SB_LUT4" in cells), f"{build}/{unit}.v"
+    # the top's motor outputs: STEP and DIR of each axis of the build, in axis order, and the drive enable
+    outputs = re.findall(r"^output (motor_\w+);", (folder / "top.v").read_text(), re.MULTILINE)
+    assert outputs == [f"motor_{kind}_{axis}" for axis in AXIS_PINS[build] for kind in ("step", "dir")] + [
+        "motor_drive_enable"], outputs
