@@ -6,6 +6,7 @@ A script runs as LinuxCNC's user on one or more card servers (one a card,
 the output).
 """
 import json
+import socket
 
 from tests.linuxcnc.session import as_user, card_server
 
@@ -17,6 +18,17 @@ HELPERS = {
     # note.sh PIN...: print PIN=value for each
     "note.sh": '#!/bin/sh\nfor pin; do echo "note $pin=$(halcmd getp "$pin")"; done\n',
 }
+
+
+def listening_socket(path):
+    """A Unix socket at ``path`` waiting for one client, 30 s at most; anyone may connect
+    (LinuxCNC runs as another user)."""
+    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    listener.bind(str(path))
+    path.chmod(0o666)
+    listener.listen(1)
+    listener.settimeout(30)
+    return listener
 
 
 def until(pin, value):

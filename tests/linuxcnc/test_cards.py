@@ -15,7 +15,7 @@ import pytest
 from models import registers as regmap
 from models.card_socket import ANSWER_WORDS, READ, REQUEST_WORDS
 from tests.linuxcnc.compare import pin_positions
-from tests.linuxcnc.halrun import note, run_halrun, until
+from tests.linuxcnc.halrun import listening_socket, note, run_halrun, until
 from tests.linuxcnc.session import as_user, card_server, missing, run_folder
 
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
@@ -160,11 +160,7 @@ def card_of_axes(path, axes, stop):
     field = build.field("AXES")
     registers = {reg.offset: reg.reset for reg in regmap.REGISTERS}
     registers[build.offset] = (build.reset & ~field.mask) | axes << field.lsb
-    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    listener.bind(str(path))
-    path.chmod(0o666)
-    listener.listen(1)
-    listener.settimeout(30)
+    listener = listening_socket(path)
     try:
         connection, _ = listener.accept()
         connection.settimeout(30)

@@ -17,7 +17,7 @@ import pytest
 from models.commands import SetCommand, decode_words
 from models.dda_plan import LineCommand
 from models import registers as regmap
-from tests.linuxcnc.halrun import note, run_halrun, until
+from tests.linuxcnc.halrun import listening_socket, note, run_halrun, until
 from tests.linuxcnc.session import PERIOD_CLOCKS, as_user, missing, run_folder
 
 # one LinuxCNC (or halrun) per host: every such test runs on one xdist worker, in turn
@@ -165,11 +165,7 @@ def test_a_card_or_server_that_stops_answering(linuxcnc_alone, kind):
 
 def silent_server(path, stop):
     """A server that takes the connection and never answers."""
-    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    listener.bind(str(path))
-    path.chmod(0o666)
-    listener.listen(1)
-    listener.settimeout(30)
+    listener = listening_socket(path)
     try:
         connection, _ = listener.accept()
         stop.wait(60)
