@@ -11,6 +11,8 @@ every clock (the card's RTL is not built yet):
   step/dir), the 32-bit count, the quadrature-error flag and counter, the
   time stamp of the last count edge, the index latch and the following
   error with its stop flag.
+* ``ProbeModel``: the card's one probe input, latching every axis's count
+  and step position at its edge.
 
 Each ``clock`` is one rising edge: the pins as they were in the clock before
 it, and the card's step position (POS) as it was then.  Every register's
@@ -172,3 +174,32 @@ class EncoderModel:
     @property
     def signed_count(self):
         return signed32(self.count)
+
+
+class ProbeModel:
+    """The card's probe input: conditioned as an encoder input (its own
+    ``filter`` and ``invert``); armed by ``arm``, the first sample in which
+    the filtered probe rises latches every axis's ENC_COUNT (as it was
+    before that sample, as the index latch) into ``counts`` and the step
+    positions into ``positions``, once, and disarms.  Call ``clock`` before
+    the encoders' ``clock`` of the same edge."""
+
+    def __init__(self):
+        self.input = InputConditioner()
+        self.seen = 0
+        self.filter, self.invert = FILTER_RESET, False
+        self.armed, self.fired = False, False
+        self.counts, self.positions = (), ()
+
+    def arm(self):
+        self.armed = True
+
+    def clock(self, pin, encoders, positions):
+        """One rising edge: the pin and the axes' POS as they were in the clock before it."""
+        level = self.input.level
+        self.fired = bool(self.armed and level and not self.seen)
+        if self.fired:
+            self.counts = tuple(encoder.count for encoder in encoders)
+            self.positions, self.armed = tuple(positions), False
+        self.input.clock(pin, self.invert, self.filter)
+        self.seen = level

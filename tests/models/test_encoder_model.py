@@ -8,7 +8,7 @@ import random
 import pytest
 
 from models.encoder_model import (ERROR_COUNT_MAX, FERROR_CLOCKS, MODE_STEP_DIR, POLARITY_INDEX,
-                                  EncoderModel, InputConditioner, pin_to_count, quadrature_delta,
+                                  EncoderModel, InputConditioner, ProbeModel, pin_to_count, quadrature_delta,
                                   scaled_steps, signed32)
 from models.motor_model import MotorModel
 
@@ -206,6 +206,39 @@ def test_index_zero_zeroes_the_count_at_the_edge_and_keeps_counting_from_there()
     _hold(model, 0, 1, 0, clocks=4)
     _walk(model, [(1, 1), (1, 0), (0, 0)], spacing=2)
     assert model.signed_count == -1
+
+
+@pytest.mark.parametrize("inverted", [False, True])
+def test_probe_latches_every_axis_once_per_arm(inverted):
+    axes, probe = [_encoder(0), _encoder(0)], ProbeModel()
+    probe.invert, idle = inverted, int(inverted)
+    moves = ([(1, 0), (1, 1), (0, 1)], [(0, 1), (1, 1)])   # X to 3, Y to -2
+    positions = (30, -20)
+
+    def edge(pin, states=((0, 0), (0, 0))):
+        probe.clock(pin, axes, positions)
+        for axis, (a, b) in zip(axes, states):
+            axis.clock(a, b, 0)
+
+    for _ in range(8):
+        edge(idle)
+    for step in range(3):
+        states = tuple(move[min(step, len(move) - 1)] for move in moves)
+        for _ in range(8):
+            edge(idle, states)
+    assert [axis.signed_count for axis in axes] == [3, -2]
+    probe.arm()
+    for pin in [1 - idle] * 6 + [idle] * 6:
+        edge(pin, states)
+    assert (probe.counts, probe.positions, probe.armed) == ((3, 2 ** 32 - 2), (30, -20), False)
+    moved = ((0, 0), states[1])                               # X to 4
+    for pin in [idle] * 6 + [1 - idle] * 6 + [idle] * 6:      # a second edge, not armed
+        edge(pin, moved)
+    assert axes[0].signed_count == 4 and probe.counts == (3, 2 ** 32 - 2)
+    probe.arm()
+    for pin in [1 - idle] * 6:
+        edge(pin, moved)
+    assert probe.counts == (4, 2 ** 32 - 2) and not probe.armed
 
 
 @pytest.mark.parametrize("pulses,direction,expected", [(5, 1, 5), (5, 0, -5), (1, 1, 1)])
