@@ -105,24 +105,19 @@ def run_traced(bench, name, duration=None, groups=None, *, trace=None, **view):
     closed, so that the next bench can start (MyHDL allows one simulation at
     a time).
     """
-    if not traced(trace):
-        try:
-            bench.run_sim(duration, quiet=1)
-        finally:
-            if bench.sim is not None and not bench.sim._finished:
-                bench.quit_sim()
-        return None
-    folder, stem = trace_stem(name)
-    bench.config_sim(trace=True, directory=str(folder), name=name, filename=stem, tracebackup=False)
-    vcd = folder / f"{stem}.vcd"
+    vcd = None
+    if traced(trace):
+        folder, stem = trace_stem(name)
+        bench.config_sim(trace=True, directory=str(folder), name=name, filename=stem, tracebackup=False)
+        vcd = folder / f"{stem}.vcd"
     try:
         bench.run_sim(duration, quiet=1)
     finally:
         if bench.sim is not None and not bench.sim._finished:
             bench.quit_sim()
-        if groups is None:
+        if vcd is not None and groups is None:
             write_gtkw(vcd, {"bench": bench_signals(vcd)})
-        else:
+        elif vcd is not None:
             write_gtkw(vcd, groups, **view)
     return vcd
 
