@@ -23,14 +23,19 @@ e + 2 + filter and counted at edge e + 3 + filter: at the (4 + filter)th
 edge from the change (``pin_to_count``); it is in the following error one
 edge later and in the stop flag two (``FERROR_CLOCKS``).
 """
-MASK32 = (1 << 32) - 1
-FILTER_MAX = 15                 # a 4-bit run count
+COUNT_BITS = 32                 # ENC_COUNT, ENC_INDEX_LATCH, TIMESTAMP, ENC_TIME, ENC_FERROR: 32-bit words
+MASK32 = (1 << COUNT_BITS) - 1
+FILTER_BITS = 4                 # ENC_FILTER and the filter's run count
+FILTER_MAX = (1 << FILTER_BITS) - 1
 FILTER_RESET = 2
-ERROR_COUNT_MAX = (1 << 8) - 1  # the 8-bit quadrature-error counter saturates here
-SCALE_FRACTION_BITS = 16        # ENC_SCALE: counts per step, unsigned 16.16
-SCALE_MAX = MASK32
+ERROR_COUNT_BITS = 8
+ERROR_COUNT_MAX = (1 << ERROR_COUNT_BITS) - 1   # the quadrature-error counter saturates here
+SCALE_BITS, SCALE_FRACTION_BITS = 32, 16        # ENC_SCALE: counts per step, unsigned 16.16
+SCALE_MAX = (1 << SCALE_BITS) - 1
+LIMIT_BITS = 32                 # FERROR_LIMIT, counts, unsigned (0: off)
 MODE_QUADRATURE, MODE_STEP_DIR = 0, 1
 POLARITY_A, POLARITY_B, POLARITY_INDEX = 1, 2, 4   # ENC_POLARITY's bits: 1 inverts that input
+POLARITY_BITS = 3
 GRAY = ((0, 0), (1, 0), (1, 1), (0, 1))            # (A, B) at phases 0..3; counting up goes 0, 1, 2, 3, 0
 FERROR_CLOCKS = 2               # count to stop flag: the error's register, then the flag's
 

@@ -63,7 +63,7 @@ UNITS = {
     "top": Unit(_CARD, ("axes",)),
 }
 # Sub-packages of rtl/ that hold units below the tops (``unit_block`` finds a unit there too).
-SUB_PACKAGES = ("pci", "dda", "regs", "machine")
+SUB_PACKAGES = ("pci", "dda", "regs", "machine", "encoder")
 
 
 def build_dir(*parts):
@@ -121,10 +121,13 @@ def _unit_module(unit):
     """The module of ``unit``: ``rtl/<unit>.py`` or ``rtl/<sub-package>/<unit>.py``."""
     for package in ("rtl", *(f"rtl.{sub}" for sub in SUB_PACKAGES)):
         try:
-            return importlib.import_module(f"{package}.{unit}")
+            module = importlib.import_module(f"{package}.{unit}")
         except ModuleNotFoundError as error:
             if error.name != f"{package}.{unit}":
                 raise
+            continue
+        if not hasattr(module, "__path__"):   # not a sub-package of the unit's name (rtl/encoder/ holds encoder.py)
+            return module
     raise ValueError(f"no unit named {unit} in rtl/")
 
 

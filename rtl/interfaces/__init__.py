@@ -1,5 +1,5 @@
 """Signal bundles shared between the card's blocks, one module per side
-(``pci``, ``dda``, ``card``, ``machine``; ``bundle`` for what they share);
+(``pci``, ``dda``, ``card``, ``machine``, ``encoder``; ``bundle`` for what they share);
 import them from here.
 
 Every interface is a plain class whose attributes are MyHDL ``Signal``s.
@@ -19,6 +19,7 @@ from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, INPUT_LIMIT_NEG_X, INP
                                  SetPort, StatusWords, StepPositions, StepRequest)
 from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxisPulses, DdaMove, DdaPlan, DdaPort, DdaRoot,
                                 DdaStep, LinearPort, SetupControl, SetupSequence)
+from rtl.interfaces.encoder import EncoderPins, EncoderPort, FollowingErrorPort, ProbePort, Timestamp
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBuffers, TargetControlNext, TargetDecode,
                                 TargetParity, TargetRequests, TargetState)
@@ -33,5 +34,6 @@ __all__ = [
     "PULSE_COUNT_BITS", "TIMING_BITS", "FifoRead", "SequencerControl", "PulseCommand", "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
     "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
-    "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y"
+    "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y", "EncoderPins", "EncoderPort", "Timestamp",
+    "FollowingErrorPort", "ProbePort"
 ]

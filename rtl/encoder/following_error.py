@@ -1,0 +1,104 @@
+"""One axis's following error: encoder count against the scaled step position, and its stop flag."""
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
+
+from models.encoder_model import COUNT_BITS, SCALE_FRACTION_BITS
+from rtl.interfaces import FollowingErrorPort, card_reset
+
+SUM_BITS = COUNT_BITS + SCALE_FRACTION_BITS     # the scaled position: 32 integer bits, 16 fraction bits
+HALF = 1 << (SCALE_FRACTION_BITS - 1)           # kept added in: the integer bits are then rounded half up
+
+
+@block
+def following_error(clock, reset, check):
+    """ENC_FERROR and the following-error stop, clock for clock
+    ``models.encoder_model.EncoderModel``'s (docs/encoders.md).
+
+    Ports: ``check`` (``FollowingErrorPort``).  With the count and step
+    position at the last alignment (``origin``, and the position's origin
+    folded into ``scaled``):
+
+        error = (count - origin) - round((pos - pos_origin) * scale / 2**16)
+
+    modulo 2**32, round half up.  No multiplier: ``scaled`` keeps
+    (pos - pos_origin) * scale + 2**15 modulo 2**48, adding or taking
+    ``scale`` as ``pos`` moves by one step (so ``pos`` may change by at
+    most one step a clock, and the model's product is the same while
+    pos - pos_origin stays within a signed 32-bit range), and its upper 32
+    bits are the rounded scaled steps.  ``align`` and the index's
+    ``zeroing`` re-align (the count's origin the count, or 0); ``align``
+    makes the error read 0 after its edge.  ``stop`` sets at the edge after
+    the one where ``error`` came to read |error| > ``limit`` (``limit`` 0:
+    off), and stays until ``clear_stop`` (a new cause in the same clock wins).
+
+    limit 1, scale 1.0, pos 0; the count crosses at edge 1:
+        edge     0     1     2     3
+        count  ==1==X==2==============
+        error  ==1========X==2========
+        stop   _________________/~~~~~
+    """
+    scaled, scaled_now = Signal(modbv(HALF)[SUM_BITS:]), Signal(modbv(0)[SUM_BITS:])
+    last_pos, ahead, back = (Signal(modbv(0)[COUNT_BITS:]) for _ in range(3))
+    rounded, moved_counts = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
+    origin, difference = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
+    magnitude = Signal(modbv(0)[COUNT_BITS:])
+    scale = Signal(intbv(0)[SUM_BITS:])
+    beyond = Signal(bool(0))
+
+    @always_comb
+    def moved():
+        ahead.next = check.pos - last_pos
+        back.next = last_pos - check.pos
+
+    @always_comb
+    def widen():
+        scale.next = concat(intbv(0)[SUM_BITS - len(check.scale):], check.scale)
+
+    @always_comb
+    def follow():
+        if ahead == 1:
+            scaled_now.next = scaled + scale
+        elif back == 1:
+            scaled_now.next = scaled - scale
+        else:
+            scaled_now.next = scaled
+
+    @always_comb
+    def round_half_up():
+        rounded.next = scaled_now[SUM_BITS:SCALE_FRACTION_BITS]
+        moved_counts.next = check.count - origin
+
+    @always_comb
+    def compare():
+        difference.next = moved_counts - rounded
+        if check.error[COUNT_BITS - 1]:
+            magnitude.next = ~check.error + 1
+        else:
+            magnitude.next = check.error
+
+    @always_comb
+    def judge():
+        beyond.next = check.limit != 0 and magnitude > check.limit and not check.align
+
+    @always_seq(clock.posedge, reset=reset)
+    def track():
+        last_pos.next = check.pos
+        if check.zeroing:
+            origin.next = 0
+            scaled.next = HALF
+        elif check.align:
+            origin.next = check.count
+            scaled.next = HALF
+        else:
+            scaled.next = scaled_now
+        if check.align:
+            check.error.next = 0
+        else:
+            check.error.next = difference
+        check.stop.next = beyond or (check.stop and not check.clear_stop)
+
+    return moved, widen, follow, round_half_up, compare, judge, track
+
+
+def following_error_ports():
+    """Fresh ports of ``following_error`` for conversion and benches."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), check=FollowingErrorPort())

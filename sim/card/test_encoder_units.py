@@ -1,0 +1,126 @@
+"""The encoder units (``rtl/encoder/``) against ``models/encoder_model.py`` every clock.
+
+Seeded random encoder waveforms (``sim/card/encoder_bench.py``: legal walks
+down to the closest spacing the filter passes, glitches it must remove,
+illegal samples, noise, step/dir, index arm and zero, the host's writes)
+on the MyHDL blocks and on their Verilog in Icarus; defects put by hand
+into copies of the Verilog must fail the same benches.
+"""
+import re
+
+import pytest
+from myhdl import block
+
+from models.encoder_model import MASK32
+from rtl.encoder.encoder import encoder, encoder_ports
+from rtl.encoder.following_error import following_error, following_error_ports
+from rtl.encoder.probe import probe, probe_ports
+from rtl.encoder.timestamp import timestamp, timestamp_ports
+from sim.backends.clocking import clock_source, reset_then_step
+from sim.backends.icarus import convert_and_cosimulate, convert_module
+from sim.backends.waves import run_traced
+from sim.card.encoder_bench import HALF_PERIOD, run_encoder, run_following_error, run_probe
+
+BACKENDS = ["myhdl", "icarus"]
+CLOCKS = 4000   # a few hundred count edges, every segment kind several times
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("seed", [1, 2])
+def test_encoder_counts_as_the_model_every_clock(seed, backend):
+    model, seen = run_encoder(seed, CLOCKS, backend)
+    # the waveform did what it is for: counts, illegal samples, index latches
+    assert seen["counts"] > 200 and seen["errors"] > 0 and seen["fires"] > 3, seen
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("seed", [3, 4])
+def test_legal_walks_with_glitches_are_counted_exactly(seed, backend):
+    """Only legal transitions, at the closest spacing half the time, with
+    glitches of up to ENC_FILTER clocks: the unit (equal to the model every
+    clock) ends on the walk's position, no quadrature error."""
+    model, seen = run_encoder(seed, CLOCKS, backend, kinds=("walk",), host=False)
+    walk = seen["walk"]
+    assert walk.legal_only and abs(walk.position) > 20
+    assert model.signed_count == walk.position and not model.quad_error
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("seed", [1, 2])
+def test_following_error_as_the_model_every_clock(seed, backend):
+    state = run_following_error(seed, CLOCKS, backend)
+    assert state["stops"] > 2 and state["aligns"] > 2, state
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("axes", [2, 3])
+def test_probe_latches_as_the_model_every_clock(axes, backend):
+    state = run_probe(axes, CLOCKS, axes, backend)
+    assert state["fires"] > 5, state
+
+
+@pytest.mark.slow(reason="long random runs: 200,000 clocks per unit and seed, several minutes on two cores")
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("seed", [11, 12, 13])
+def test_long_random_runs_as_the_model(seed, backend):
+    run_encoder(seed, 200_000, backend)
+    run_following_error(seed, 200_000, backend)
+    run_probe(seed, 50_000, 3, backend)
+
+
+@block
+def _timestamp_bench(ports, cosim, step, cycles):
+    clock, reset = ports["clock"], ports["reset"]
+    dut = convert_and_cosimulate(timestamp, "timestamp", ports) if cosim else timestamp(**ports)
+    return dut, clock_source(clock, 2 * HALF_PERIOD), reset_then_step(clock, reset, cycles, step)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_timestamp_counts_every_edge_from_reset(backend):
+    ports = timestamp_ports()
+    stamp = ports["stamp"]
+    values = []
+
+    def step(index):
+        values.append((int(stamp.value), int(stamp.coming)))
+
+    run_traced(_timestamp_bench(ports, backend == "icarus", step, 20), f"timestamp_{backend}")
+    # one edge after the reset's release before the first step
+    assert values == [(n, (n + 1) & MASK32) for n in range(1, 21)]
+
+
+# Defects put by hand into the converted Verilog: (what, unit, [(pattern, replacement)], bench).
+MUTANTS = {
+    "a_double_change_counted": ("encoder", [(r"\((decoder\d+)_changed_a && \(!decoder\d+_changed_b\) && "
+                                             r"\((conditioner\d+_level) != (conditioner\d+_level)\)\)",
+                                             r"(\1_changed_a && (\2 != \3))")]),
+    "the_filter_one_clock_short": ("encoder", [(r"\((conditioner\d+)_run >= port_filter\)",
+                                                r"((\1_run + 1) >= port_filter)")]),
+    "the_index_not_disarmed": ("encoder", [(r"port_armed <= \((index_latch\d+)_armed_now && "
+                                            r"\(!index_latch\d+_fire\)\);", r"port_armed <= \1_armed_now;")]),
+    "step_dir_counting_both_edges_of_a": ("encoder", [(r"\((conditioner\d+)_level && \(!(decoder\d+)_seen_a\) && "
+                                                       r"(conditioner\d+_level)\)", r"(\2_changed_a && \3)")]),
+    "the_stop_at_the_limit": ("following_error", [(r"\(magnitude > check_limit\)", "(magnitude >= check_limit)")]),
+    "the_steps_scaled_one_late": ("following_error", [(r"rounded = scaled_now\[", "rounded = scaled[")]),
+    "the_probe_on_its_level": ("probe", [(r"\((\w*armed_now) && (\w*level) && \(!\w*seen\)\)",
+                                          r"(\1 && \2)")]),
+}
+FACTORIES = {"encoder": (encoder, encoder_ports), "following_error": (following_error, following_error_ports),
+             "probe": (probe, lambda: probe_ports(3))}
+RUNS = {"encoder": lambda path: run_encoder(1, CLOCKS, path),
+        "following_error": lambda path: run_following_error(1, CLOCKS, path),
+        "probe": lambda path: run_probe(1, CLOCKS, 3, path)}
+
+
+@pytest.mark.parametrize("defect", sorted(MUTANTS))
+def test_a_defect_put_in_by_hand_fails_the_bench(defect, tmp_path):
+    unit, edits = MUTANTS[defect]
+    factory, ports = FACTORIES[unit]
+    text = convert_module(factory, unit, ports()).read_text()
+    for pattern, replacement in edits:
+        text, count = re.subn(pattern, replacement, text)
+        assert count, f"{unit}.v no longer has {pattern!r}: pick the defect anew"
+    mutant = tmp_path / f"{unit}.v"
+    mutant.write_text(text)
+    with pytest.raises(AssertionError, match="clock"):
+        RUNS[unit](str(mutant))
