@@ -7,13 +7,14 @@ clocks inside the holds (which the filter must remove), illegal samples (A
 and B together), pure noise, step/dir stretches, index pulses, and the
 host's writes (filter, polarity, mode, INDEX_ZERO, INDEX_ARM, QUAD_ERROR's
 clear).  ``run_encoder``, ``run_following_error`` and ``run_probe`` drive a
-unit (the MyHDL block, its Verilog in Icarus, or a given Verilog file) and
-compare every output with the model after every edge: the pins, writes and
+unit (the MyHDL block, its Verilog in Icarus or in Verilator, or a given
+Verilog file in Icarus) and compare every output with the model after every edge: the pins, writes and
 strobes are driven at the falling edge, the model takes the coming rising
 edge at once (a strobe acts at the edge that ends its clock: the model's
 method, then its ``clock``), and the unit's outputs are compared at the next
 falling edge.
 """
+import copy
 import random
 from dataclasses import dataclass, field
 
@@ -25,7 +26,9 @@ from rtl.encoder.encoder import encoder, encoder_ports
 from rtl.encoder.following_error import following_error, following_error_ports
 from rtl.encoder.probe import probe, probe_ports
 from sim.backends.clocking import clock_source, reset_then_step
-from sim.backends.icarus import convert_and_cosimulate, cosimulate
+from sim.backends.icarus import convert_and_cosimulate, convert_module, cosimulate
+from sim.backends.verilator.build import build_model
+from sim.backends.verilator.model import VerilatedModel
 from sim.backends.waves import run_traced
 
 HALF_PERIOD = 5
@@ -176,9 +179,59 @@ def _bench(factory, module, ports, backend, step, cycles):
     return dut, clock_source(clock, 2 * HALF_PERIOD), reset_then_step(clock, reset, cycles, step)
 
 
-def _run(name, factory, module, ports, backend, step, cycles):
-    label = backend if backend in ("myhdl", "icarus") else "mutant"
-    run_traced(_bench(factory, module, ports, backend, step, cycles), f"{name}_{label}")
+class _VerilatedPort:
+    """A port of a Verilated model in a Signal's clothes: ``int()`` reads it, ``.next =`` sets it."""
+
+    def __init__(self, model, name):
+        self._model, self._name = model, name
+
+    def __int__(self):
+        return self._model[self._name]
+
+    @property
+    def next(self):
+        raise AttributeError("read a Verilated port with int()")
+
+    @next.setter
+    def next(self, value):
+        self._model[self._name] = int(value)
+
+
+class Unit:
+    """A unit under test on ``backend``: its ``ports`` (for "verilator",
+    copies of the interfaces whose signals are the Verilated model's ports)
+    and ``run(name, step, cycles)``: the reset, one edge, then ``step(index)``
+    before each of ``cycles`` edges."""
+
+    def __init__(self, factory, module, ports, backend):
+        self.factory, self.module, self.backend, self.ports = factory, module, backend, ports
+        if backend == "verilator":
+            self.model = VerilatedModel(build_model([convert_module(factory, module, ports)], module))
+            self.model.bind_clock("clock")
+            self.ports = {name: self._proxy(name, value) for name, value in ports.items()}
+
+    def _proxy(self, name, value):
+        if not hasattr(value, "__dict__") or hasattr(value, "_val"):   # a Signal
+            return _VerilatedPort(self.model, name)
+        proxy = copy.copy(value)
+        for attribute, member in vars(value).items():
+            if hasattr(member, "_val"):
+                setattr(proxy, attribute, _VerilatedPort(self.model, f"{name}_{attribute}"))
+        return proxy
+
+    def run(self, name, step, cycles):
+        if self.backend != "verilator":
+            label = self.backend if self.backend in ("myhdl", "icarus") else "mutant"
+            run_traced(_bench(self.factory, self.module, self.ports, self.backend, step, cycles), f"{name}_{label}")
+            return
+        self.model["reset"] = 0
+        self.model.tick(2)
+        self.model["reset"] = 1
+        self.model.tick()   # the edge after the reset's release, as reset_then_step has it
+        for index in range(cycles):
+            step(index)
+            self.model.tick()
+        self.model.close()
 
 
 ENCODER_OUTPUTS = ("count", "direction", "quad_error", "error_count", "time", "armed", "latch", "fired")
@@ -201,8 +254,8 @@ def run_encoder(seed, clocks, backend="myhdl", **waves):
     clocks, **waves)``; the model at the end and what happened (the walk,
     index fires, the most quadrature errors, count edges)."""
     rng = random.Random(seed)
-    ports = encoder_ports()
-    pins, port = ports["pins"], ports["port"]
+    unit = Unit(encoder, "encoder", encoder_ports(), backend)
+    pins, port = unit.ports["pins"], unit.ports["port"]
     waveform = list(encoder_waves(rng, clocks, **waves))
     model, seen = EncoderModel(), dict(fires=0, errors=0, counts=0, walk=waveform[-1][1])
     samples = iter(waveform)
@@ -212,7 +265,7 @@ def run_encoder(seed, clocks, backend="myhdl", **waves):
             model.clock(0, 0, 0)   # the edge after the reset's release, before the first step
         observed = {name: int(getattr(port, name)) for name in ENCODER_OUTPUTS}
         assert observed == _model_outputs(model), f"clock {index}: unit {observed} != model {_model_outputs(model)}"
-        sample = next(samples, (Sample(int(pins.a.val), int(pins.b.val), int(pins.index.val)),))[0]
+        sample = next(samples, (Sample(int(pins.a), int(pins.b), int(pins.index)),))[0]
         _apply_settings(model, port, sample.settings)
         port.arm.next, port.clear_error.next = "arm" in sample.strobes, "clear_error" in sample.strobes
         if "arm" in sample.strobes:
@@ -227,7 +280,7 @@ def run_encoder(seed, clocks, backend="myhdl", **waves):
         seen["counts"] += model.count != before
         seen["errors"] = max(seen["errors"], model.error_count)
 
-    _run(f"encoder_{seed}", encoder, "encoder", ports, backend, step, len(waveform) + 1)
+    unit.run(f"encoder_{seed}", step, len(waveform) + 1)
     return model, seen
 
 
@@ -237,8 +290,8 @@ def run_following_error(seed, clocks, backend="myhdl"):
     wanders by one step at a time drive the unit; scales, limits, aligns and
     stop clears at random.  Returns how often the stop rose and the aligns."""
     rng = random.Random(seed)
-    ports = following_error_ports()
-    check = ports["check"]
+    unit = Unit(following_error, "following_error", following_error_ports(), backend)
+    check = unit.ports["check"]
     model = EncoderModel()
     samples = encoder_waves(rng, clocks, kinds=("walk",))
     state = dict(pos=0, stops=0, aligns=0, stopped=False)
@@ -278,7 +331,7 @@ def run_following_error(seed, clocks, backend="myhdl"):
         check.pos.next, check.limit.next = pos, model.limit
         check.align.next, check.clear_stop.next = align, clear
 
-    _run(f"following_error_{seed}", following_error, "following_error", ports, backend, step, clocks)
+    unit.run(f"following_error_{seed}", step, clocks)
     return state
 
 
@@ -287,8 +340,8 @@ def run_probe(seed, clocks, axes=3, backend="myhdl"):
     counts and positions changing at random, arms, filter and polarity
     changes.  Returns how often it fired."""
     rng = random.Random(seed)
-    ports = probe_ports(axes)
-    port = ports["port"]
+    unit = Unit(probe, "probe", probe_ports(axes), backend)
+    port = unit.ports["port"]
     model = ProbeModel()
     encoders = [EncoderModel() for _ in range(axes)]
     state = dict(pin=0, level=0, fires=0, positions=[0] * axes)
@@ -322,5 +375,5 @@ def run_probe(seed, clocks, axes=3, backend="myhdl"):
         model.clock(pin, encoders, state["positions"])
         port.pin.next, port.arm.next = pin, arm
 
-    _run(f"probe_{seed}_{axes}", probe, "probe", ports, backend, step, clocks)
+    unit.run(f"probe_{seed}_{axes}", step, clocks)
     return state

@@ -3,8 +3,8 @@
 Seeded random encoder waveforms (``sim/card/encoder_bench.py``: legal walks
 down to the closest spacing the filter passes, glitches it must remove,
 illegal samples, noise, step/dir, index arm and zero, the host's writes)
-on the MyHDL blocks and on their Verilog in Icarus; defects put by hand
-into copies of the Verilog must fail the same benches.
+on the MyHDL blocks and on their Verilog in Icarus and Verilator; defects
+put by hand into copies of the Verilog must fail the same benches.
 """
 import re
 
@@ -22,11 +22,13 @@ from sim.backends.waves import run_traced
 from sim.card.encoder_bench import HALF_PERIOD, run_encoder, run_following_error, run_probe
 
 BACKENDS = ["myhdl", "icarus"]
+# a Verilator model takes about 8 s to build (cached in build/vlt/ after): the encoder's in the default set
+SLOW_BUILD = pytest.mark.slow(reason="a Verilator build of its own, about 8 s")
 CLOCKS = 4000   # a few hundred count edges, every segment kind several times
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed, backend", [(1, "myhdl"), (1, "icarus"), (1, "verilator"), (2, "myhdl"),
+                                           (2, "icarus")])
 def test_encoder_counts_as_the_model_every_clock(seed, backend):
     model, seen = run_encoder(seed, CLOCKS, backend)
     # the waveform did what it is for: counts, illegal samples, index latches
@@ -45,22 +47,22 @@ def test_legal_walks_with_glitches_are_counted_exactly(seed, backend):
     assert model.signed_count == walk.position and not model.quad_error
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed, backend", [(1, "myhdl"), (1, "icarus"), pytest.param(1, "verilator", marks=SLOW_BUILD),
+                                           (2, "myhdl"), (2, "icarus")])
 def test_following_error_as_the_model_every_clock(seed, backend):
     state = run_following_error(seed, CLOCKS, backend)
     assert state["stops"] > 2 and state["aligns"] > 2, state
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-@pytest.mark.parametrize("axes", [2, 3])
+@pytest.mark.parametrize("axes, backend", [(2, "myhdl"), (2, "icarus"), (3, "myhdl"), (3, "icarus"),
+                                           pytest.param(3, "verilator", marks=SLOW_BUILD)])
 def test_probe_latches_as_the_model_every_clock(axes, backend):
     state = run_probe(axes, CLOCKS, axes, backend)
     assert state["fires"] > 5, state
 
 
 @pytest.mark.slow(reason="long random runs: 200,000 clocks per unit and seed, several minutes on two cores")
-@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("backend", [*BACKENDS, "verilator"])
 @pytest.mark.parametrize("seed", [11, 12, 13])
 def test_long_random_runs_as_the_model(seed, backend):
     run_encoder(seed, 200_000, backend)
