@@ -5,7 +5,7 @@ from models.encoder_model import POLARITY_A, POLARITY_B, POLARITY_INDEX
 from rtl.encoder.conditioner import conditioner
 from rtl.encoder.decoder import decoder
 from rtl.encoder.index_latch import index_latch
-from rtl.interfaces import EncoderPins, EncoderPort, card_reset
+from rtl.interfaces import EncoderPins, EncoderPort, card_reset, named
 
 
 @block
@@ -18,9 +18,10 @@ def encoder(clock, reset, pins, port):
     latch; ``port.coming``, the card's ``Timestamp.coming``, is stored in
     ``time`` at a count edge).
 
-    Seams: each pin through a ``conditioner`` (two flip-flops, its
-    ENC_POLARITY bit, the filter of ``port.filter``), then the ``decoder``
-    (count, direction, time, quadrature errors) and the ``index_latch``.
+    Seams: each pin through a ``conditioner`` (``conditioner_a``, ``_b``,
+    ``_index``: two flip-flops, its ENC_POLARITY bit, the filter of
+    ``port.filter``), then the ``decoder`` (count, direction, time,
+    quadrature errors) and the ``index_latch``.
     A pin change before edge e is counted at edge e + 3 + ENC_FILTER.
 
     ENC_FILTER 0, A rising with the index armed (count 1 before):
@@ -42,10 +43,12 @@ def encoder(clock, reset, pins, port):
         inverts[1].next = (port.polarity & POLARITY_B) != 0
         inverts[2].next = (port.polarity & POLARITY_INDEX) != 0
 
-    inputs = [conditioner(clock, reset, pin, invert, port.filter, level)
-              for pin, invert, level in zip((pins.a, pins.b, pins.index), inverts, levels)]
-    return (polarities, inputs, decoder(clock, reset, levels[0], levels[1], port),
-            index_latch(clock, reset, levels[2], port))
+    inputs = [named(f"conditioner_{name}", conditioner(clock, reset, pin, invert, port.filter, level))
+              for name, pin, invert, level in zip("ab", (pins.a, pins.b), inverts, levels)]
+    inputs.append(named("conditioner_index", conditioner(clock, reset, pins.index, inverts[2], port.filter,
+                                                         levels[2])))
+    return (polarities, inputs, named("decoder", decoder(clock, reset, levels[0], levels[1], port)),
+            named("index_latch", index_latch(clock, reset, levels[2], port)))
 
 
 def encoder_ports():

@@ -28,7 +28,7 @@ def probe(clock, reset, port):
         fired      __________________/~~~\\_
     """
     level, seen, fire, armed_now = (Signal(bool(0)) for _ in range(4))
-    filtered = conditioner(clock, reset, port.pin, port.invert, port.filter, level)
+    filtered = named("conditioner", conditioner(clock, reset, port.pin, port.invert, port.filter, level))
     latches = [named(f"axis_{suffix}", _axis_latch(clock, reset, fire, port.signals("count", axis),
                                                     port.signals("pos", axis), port.signals("latched_count", axis),
                                                     port.signals("latched_pos", axis)))

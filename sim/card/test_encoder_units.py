@@ -93,19 +93,19 @@ def test_timestamp_counts_every_edge_from_reset(backend):
 
 # Defects put by hand into the converted Verilog: (what, unit, [(pattern, replacement)], bench).
 MUTANTS = {
-    "a_double_change_counted": ("encoder", [(r"\((decoder\d+)_changed_a && \(!decoder\d+_changed_b\) && "
-                                             r"\((conditioner\d+_level) != (conditioner\d+_level)\)\)",
-                                             r"(\1_changed_a && (\2 != \3))")]),
-    "the_filter_one_clock_short": ("encoder", [(r"\((conditioner\d+)_run >= port_filter\)",
+    "a_double_change_counted": ("encoder", [(r"\(decoder_changed_a && \(!decoder_changed_b\) && "
+                                             r"\(conditioner_a_level != conditioner_b_level\)\)",
+                                             "(decoder_changed_a && (conditioner_a_level != conditioner_b_level))")]),
+    "the_filter_one_clock_short": ("encoder", [(r"\((conditioner_\w+)_run >= port_filter\)",
                                                 r"((\1_run + 1) >= port_filter)")]),
-    "the_index_not_disarmed": ("encoder", [(r"port_armed <= \((index_latch\d+)_armed_now && "
-                                            r"\(!index_latch\d+_fire\)\);", r"port_armed <= \1_armed_now;")]),
-    "step_dir_counting_both_edges_of_a": ("encoder", [(r"\((conditioner\d+)_level && \(!(decoder\d+)_seen_a\) && "
-                                                       r"(conditioner\d+_level)\)", r"(\2_changed_a && \3)")]),
+    "the_index_not_disarmed": ("encoder", [(r"port_armed <= \(index_latch_armed_now && \(!index_latch_fire\)\);",
+                                            "port_armed <= index_latch_armed_now;")]),
+    "step_dir_counting_both_edges_of_a": ("encoder", [(r"\(conditioner_a_level && \(!decoder_seen_a\) && "
+                                                       r"conditioner_b_level\)",
+                                                       "(decoder_changed_a && conditioner_b_level)")]),
     "the_stop_at_the_limit": ("following_error", [(r"\(magnitude > check_limit\)", "(magnitude >= check_limit)")]),
     "the_steps_scaled_one_late": ("following_error", [(r"rounded = scaled_now\[", "rounded = scaled[")]),
-    "the_probe_on_its_level": ("probe", [(r"\((\w*armed_now) && (\w*level) && \(!\w*seen\)\)",
-                                          r"(\1 && \2)")]),
+    "the_probe_on_its_level": ("probe", [(r"\(armed_now && level && \(!seen\)\)", "(armed_now && level)")]),
 }
 FACTORIES = {"encoder": (encoder, encoder_ports), "following_error": (following_error, following_error_ports),
              "probe": (probe, lambda: probe_ports(3))}
