@@ -17,8 +17,9 @@ from formal.pci_props import pci_constants
 from formal.regs_props import register_offsets, table_properties
 from formal.sby import Task
 from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
+from models.encoder_model import ERROR_COUNT_MAX, FILTER_MAX
 from models.parameters import Build
-from rtl.convert import BUILD_DIR, convert_narrow_dda, write_whole
+from rtl.convert import BUILD_DIR, convert_narrow_dda, convert_unit, write_whole
 from rtl.pci.pci_slave_build import local_addr_width
 
 PROPS = Path(__file__).resolve().parent / "props"
@@ -182,6 +183,21 @@ def narrow_dda():
 
 
 DDA = dict(convert=narrow_dda, parameters=dict(W=NARROW_WIDTH))
+
+
+def encoder_unit(unit):
+    """A function writing ``unit`` of rtl/encoder/ (not in gen/ yet), converted
+    alone, into the work folder; it returns the path."""
+    return lambda: convert_unit(unit, {}, GENERATED / "encoder")
+
+
+# the encoder's filtered levels and the samples its decoder and index latch compare them with
+ENCODER_SIGNALS = ("conditioner_a_level", "conditioner_b_level", "conditioner_index_level", "decoder_seen_a",
+                   "decoder_seen_b", "index_latch_seen")
+ENCODER = dict(convert=encoder_unit("encoder"), expose=ENCODER_SIGNALS)
+ENCODER_PARAMETERS = dict(ERROR_MAX=ERROR_COUNT_MAX)
+ENCODER_FILES = [*RESET_FILES, "encoder_harness.sv"]
+FERROR_FILES = [*RESET_FILES, "following_error_harness.sv"]
 PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
                    defines={"PCI_SLAVE_INVARIANTS": None}, generated=PCI_TABLE)
 
@@ -250,6 +266,22 @@ GROUPS = [
           text="homing: zero only at the release, refusals, one axis (docs/machine.md)"),
     Group("machine_homing_pins", "regs_fifo", MACHINE_FILES, "machine_harness", ("hp_",), mode="bmc", depth=20,
           **MACHINE, text="homing: no STEP on the other axis's pin (bounded)"),
+    Group("encoder_count", "encoder", ENCODER_FILES, "encoder_harness", ("enc_count_",), depth=8,
+          parameters=ENCODER_PARAMETERS, **ENCODER,
+          text="no count without a legal transition of the filtered A, B; errors flagged and counted"),
+    Group("encoder_index", "encoder", ENCODER_FILES, "encoder_harness", ("idx_",), depth=8, **ENCODER,
+          text="the index latches the count at an armed rise, once per arm"),
+    Group("encoder_pins", "encoder", ENCODER_FILES, "encoder_harness", ("enc_pins_",), mode="bmc",
+          depth=24, defines={"ENCODER_PINS": None}, parameters=dict(ENCODER_PARAMETERS, PINS_FILTER_MAX=3),
+          **ENCODER,
+          text="legal pin transitions at every spacing the filter passes all counted (bounded, ENC_FILTER <= 3)"),
+    Group("encoder_pins_wide", "encoder", ENCODER_FILES, "encoder_harness", ("enc_pins_",), mode="bmc",
+          depth=48, defines={"ENCODER_PINS": None}, fast=False, **ENCODER,
+          parameters=dict(ENCODER_PARAMETERS, PINS_FILTER_MAX=FILTER_MAX),
+          text="the same at every ENC_FILTER 0 .. 15 (bounded)"),
+    Group("following_error", "following_error", FERROR_FILES, "following_error_harness", ("fe_",), depth=4,
+          convert=encoder_unit("following_error"),
+          text="the following-error stop never within the limit, always beyond it; the error follows the count"),
     Group("dda_lines", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=20,
           defines={"DDA_LINES": None, "DDA_FULL_SPEED": None}, **DDA,
           text="lines of the 6-bit DDA: steps, end point, end counters, finishing (bounded)"),

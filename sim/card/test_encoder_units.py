@@ -6,8 +6,6 @@ illegal samples, noise, step/dir, index arm and zero, the host's writes)
 on the MyHDL blocks and on their Verilog in Icarus and Verilator; defects
 put by hand into copies of the Verilog must fail the same benches.
 """
-import re
-
 import pytest
 from myhdl import block
 
@@ -19,7 +17,7 @@ from rtl.encoder.timestamp import timestamp, timestamp_ports
 from sim.backends.clocking import clock_source, reset_then_step
 from sim.backends.icarus import convert_and_cosimulate, convert_module
 from sim.backends.waves import run_traced
-from sim.card.encoder_bench import HALF_PERIOD, run_encoder, run_following_error, run_probe
+from sim.card.encoder_bench import DEFECTS, HALF_PERIOD, run_encoder, run_following_error, run_probe, with_defect
 
 BACKENDS = ["myhdl", "icarus"]
 # a Verilator model takes about 8 s to build (cached in build/vlt/ after): the encoder's in the default set
@@ -91,22 +89,6 @@ def test_timestamp_counts_every_edge_from_reset(backend):
     assert values == [(n, (n + 1) & MASK32) for n in range(1, 21)]
 
 
-# Defects put by hand into the converted Verilog: (what, unit, [(pattern, replacement)], bench).
-MUTANTS = {
-    "a_double_change_counted": ("encoder", [(r"\(decoder_changed_a && \(!decoder_changed_b\) && "
-                                             r"\(conditioner_a_level != conditioner_b_level\)\)",
-                                             "(decoder_changed_a && (conditioner_a_level != conditioner_b_level))")]),
-    "the_filter_one_clock_short": ("encoder", [(r"\((conditioner_\w+)_run >= port_filter\)",
-                                                r"((\1_run + 1) >= port_filter)")]),
-    "the_index_not_disarmed": ("encoder", [(r"port_armed <= \(index_latch_armed_now && \(!index_latch_fire\)\);",
-                                            "port_armed <= index_latch_armed_now;")]),
-    "step_dir_counting_both_edges_of_a": ("encoder", [(r"\(conditioner_a_level && \(!decoder_seen_a\) && "
-                                                       r"conditioner_b_level\)",
-                                                       "(decoder_changed_a && conditioner_b_level)")]),
-    "the_stop_at_the_limit": ("following_error", [(r"\(magnitude > check_limit\)", "(magnitude >= check_limit)")]),
-    "the_steps_scaled_one_late": ("following_error", [(r"rounded = scaled_now\[", "rounded = scaled[")]),
-    "the_probe_on_its_level": ("probe", [(r"\(armed_now && level && \(!seen\)\)", "(armed_now && level)")]),
-}
 FACTORIES = {"encoder": (encoder, encoder_ports), "following_error": (following_error, following_error_ports),
              "probe": (probe, lambda: probe_ports(3))}
 RUNS = {"encoder": lambda path: run_encoder(1, CLOCKS, path),
@@ -114,15 +96,10 @@ RUNS = {"encoder": lambda path: run_encoder(1, CLOCKS, path),
         "probe": lambda path: run_probe(1, CLOCKS, 3, path)}
 
 
-@pytest.mark.parametrize("defect", sorted(MUTANTS))
+@pytest.mark.parametrize("defect", sorted(DEFECTS))
 def test_a_defect_put_in_by_hand_fails_the_bench(defect, tmp_path):
-    unit, edits = MUTANTS[defect]
+    unit = DEFECTS[defect][0]
     factory, ports = FACTORIES[unit]
-    text = convert_module(factory, unit, ports()).read_text()
-    for pattern, replacement in edits:
-        text, count = re.subn(pattern, replacement, text)
-        assert count, f"{unit}.v no longer has {pattern!r}: pick the defect anew"
-    mutant = tmp_path / f"{unit}.v"
-    mutant.write_text(text)
+    mutant = with_defect(defect, convert_module(factory, unit, ports()), tmp_path)
     with pytest.raises(AssertionError, match="clock"):
         RUNS[unit](str(mutant))
