@@ -14,12 +14,15 @@ def conditioner(clock, reset, pin, invert, setting, level):
     seen ``setting`` + 1 clocks in a row and a glitch of w <= ``setting``
     clocks is rejected; every edge is delayed by 3 + ``setting`` edges.
 
-    setting 1 (a pin change before edge e; a 1-clock glitch after it):
-        edge     e     e+1   e+2   e+3   e+4   e+5   e+6
-        pin    _/~~~~~~~~~~~~~~~~~~\\___/~~~~~~~~~~~~~
-        synced _______/~~~~~~~~~~~~~~~~~~~\\___/~~~~~~~
-        run       0     0     1     0     0     1     0
-        level  _____________________/~~~~~~~~~~~~~~~~~
+    setting 1: the pin rises in the clock before edge 1, and a glitch of one
+    clock low before edge 5 is removed (values after each edge; the pin's
+    in the clock before it):
+        edge    1  2  3  4  5  6  7  8
+        pin     1  1  1  1  0  1  1  1
+        sync    1  1  1  1  0  1  1  1
+        synced  0  1  1  1  1  0  1  1
+        run     0  0  1  0  0  0  1  0
+        level   0  0  0  1  1  1  1  1
     """
     sync, synced, seen = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     run = Signal(intbv(0)[len(setting):])

@@ -20,12 +20,17 @@ def decoder(clock, reset, a, b, port):
     edge, a count in the same sample counting from 0.  ``clear_error``
     clears flag and counter; an error in the same sample sets them again.
 
-    Forwards, then an illegal sample (A and B together), then back:
-        edge        1     2     3     4     5
-        a         __/~~~~~~~~~~~~~~~~~\\_____/~~~~~
-        b         ________/~~~~~~~~~~~~~~~~~\\_____
-        count       0  =1====2=========X=2===X=1===
-        quad_error ________________________________
+    ENC_FILTER 0, TIMESTAMP 100 + n at edge n: A rises, B rises, then both
+    fall in one clock (values after each edge; the pins' in the clock
+    before it; the filtered levels 2 edges after the pins):
+        edge        1    2    3    4    5    6    7    8
+        pin A       1    1    1    1    0    0    0    0
+        pin B       0    0    1    1    0    0    0    0
+        a (level)   0    0    1    1    1    1    0    0
+        b (level)   0    0    0    0    1    1    0    0
+        count       0    0    0    1    1    2    2    2
+        time        0    0    0  104  104  106  106  106
+        quad_error  0    0    0    0    0    0    0    1
     """
     seen_a, seen_b = Signal(bool(0)), Signal(bool(0))
     changed_a, changed_b = Signal(bool(0)), Signal(bool(0))

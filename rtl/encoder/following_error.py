@@ -30,11 +30,12 @@ def following_error(clock, reset, check):
     the one where ``error`` came to read |error| > ``limit`` (``limit`` 0:
     off), and stays until ``clear_stop`` (a new cause in the same clock wins).
 
-    limit 1, scale 1.0, pos 0; the count crosses at edge 1:
-        edge     0     1     2     3
-        count  ==1==X==2==============
-        error  ==1========X==2========
-        stop   _________________/~~~~~
+    limit 1, scale 1.0, pos 0; the encoder's count crosses to 2 at edge 1
+    (``FERROR_CLOCKS`` = 2 edges from the count to the stop):
+        edge    0  1  2  3
+        count   1  2  2  2
+        error   1  1  2  2
+        stop    0  0  0  1
     """
     scaled, scaled_now = Signal(modbv(HALF)[SUM_BITS:]), Signal(modbv(0)[SUM_BITS:])
     last_pos, ahead, back = (Signal(modbv(0)[COUNT_BITS:]) for _ in range(3))

@@ -14,13 +14,16 @@ def index_latch(clock, reset, index, port):
     decoder and the following error).  Further rises do nothing until armed
     again.
 
-        edge       1     2     3     4     5
-        arm      _/~~~\\_______________________
-        index    ___________/~~~~~~~~~~~~~~~~~   (filtered)
-        armed    _____/~~~~~~~~~~~\\___________
-        count      5     5     6     7     8
-        latch    ==0=========X==6==============  (the count before edge 3)
-        fired    _________________/~~~\\_______
+    ENC_FILTER 0, count 5, A/B moving one phase up every other clock (the
+    change before edge 2 counted at edge 5, in the sample the index fires):
+        edge         1  2  3  4  5  6
+        arm          1  0  0  0  0  0   (in the clock before the edge)
+        pin index    0  1  1  1  1  1
+        index level  0  0  0  1  1  1
+        count        5  5  5  5  6  6
+        armed        1  1  1  1  0  0
+        latch        0  0  0  0  5  5   (the count before edge 5)
+        fired        0  0  0  0  1  0
     """
     seen = Signal(bool(0))
     fire, armed_now = Signal(bool(0)), Signal(bool(0))

@@ -251,15 +251,20 @@ def _apply_settings(model, port, settings):
         getattr(port, name).next = value
 
 
-def run_encoder(seed, clocks, backend="myhdl", **waves):
+def run_encoder(seed, clocks, backend="myhdl", waveform=None, **waves):
     """The encoder unit against ``EncoderModel`` on ``encoder_waves(rng,
-    clocks, **waves)``; the model at the end and what happened (the walk,
-    index fires, the most quadrature errors, count edges)."""
+    clocks, **waves)`` (or on ``waveform``, a list of ``Sample``s); the model
+    at the end and what happened (the walk, index fires, the most quadrature
+    errors, count edges, and ``unit``: the unit's (count, quad_error) after
+    every edge)."""
     rng = random.Random(seed)
     unit = Unit(encoder, "encoder", encoder_ports(), backend)
     pins, port = unit.ports["pins"], unit.ports["port"]
-    waveform = list(encoder_waves(rng, clocks, **waves))
-    model, seen = EncoderModel(), dict(fires=0, errors=0, counts=0, walk=waveform[-1][1])
+    if waveform is None:
+        waveform = list(encoder_waves(rng, clocks, **waves))
+    else:
+        waveform = [(sample, None) for sample in waveform]
+    model, seen = EncoderModel(), dict(fires=0, errors=0, counts=0, walk=waveform[-1][1], unit=[])
     samples = iter(waveform)
 
     def step(index):
@@ -267,6 +272,7 @@ def run_encoder(seed, clocks, backend="myhdl", **waves):
             model.clock(0, 0, 0)   # the edge after the reset's release, before the first step
         observed = {name: int(getattr(port, name)) for name in ENCODER_OUTPUTS}
         assert observed == _model_outputs(model), f"clock {index}: unit {observed} != model {_model_outputs(model)}"
+        seen["unit"].append((observed["count"], observed["quad_error"]))
         sample = next(samples, (Sample(int(pins.a), int(pins.b), int(pins.index)),))[0]
         _apply_settings(model, port, sample.settings)
         port.arm.next, port.clear_error.next = "arm" in sample.strobes, "clear_error" in sample.strobes
