@@ -97,7 +97,7 @@ def synthesis_rows():
     rows = []
     with tempfile.TemporaryDirectory() as folder:
         for unit, _ in UNITS:
-            convert_unit(unit, {"axes": 2} if unit == "probe" else {}, folder)
+            convert_unit(unit, {}, folder)   # the probe of the default build's 2 axes
         for family in ("ice40", "ecp5"):
             for unit, what in UNITS:
                 cells = synthesize(unit, family=family, gen_dir=folder, wrap=False)

@@ -6,14 +6,15 @@
 //         beyond, stays until cleared; an align reads 0; with the step
 //         position still, ENC_FERROR follows the count one edge later (so
 //         a count that crosses the limit stops 2 edges later).
-// Environment: RST# in the first clock; the count, position, scale, limit
-// and strobes are free.
+// Environment: RST# in the first clock; the count, the position's two low
+// bits (POS moves by one step at most a clock), scale, limit and strobes
+// are free.
 `default_nettype none
 
 module following_error_harness (
     input wire clock,
     input wire reset_n,
-    input wire [31:0] count, input wire zeroing, input wire [31:0] pos, input wire [31:0] scale,
+    input wire [31:0] count, input wire zeroing, input wire [1:0] pos_low, input wire [31:0] scale,
     input wire [31:0] limit, input wire align, input wire clear_stop
 );
 `include "harness_reset.vh"
@@ -21,7 +22,7 @@ module following_error_harness (
     wire stop;
 
     following_error dut(.clock(clock), .reset(reset_n), .check_count(count), .check_zeroing(zeroing),
-                        .check_pos(pos), .check_scale(scale), .check_limit(limit), .check_align(align),
+                        .check_pos_low(pos_low), .check_scale(scale), .check_limit(limit), .check_align(align),
                         .check_clear_stop(clear_stop), .check_error(error), .check_stop(stop));
 
     // |error| read signed (|-2**31| = 2**31 fits 32 bits unsigned) beyond a limit that is not 0
@@ -29,12 +30,13 @@ module following_error_harness (
     wire beyond = limit != 0 && magnitude > limit;
 
     reg p_beyond = 0, p_align = 0, pp_align = 0, p_zeroing = 0, pp_zeroing = 0, p_stop = 0, p_clear = 0;
-    reg [31:0] p_error = 0, p_count = 0, pp_count = 0, p_pos = 0, pp_pos = 0;
+    reg [31:0] p_error = 0, p_count = 0, pp_count = 0;
+    reg [1:0] p_pos = 0, pp_pos = 0;
     reg pp_judged = 0;
     always @(posedge clock) begin
         p_beyond <= beyond; p_align <= align; pp_align <= p_align; p_zeroing <= zeroing; pp_zeroing <= p_zeroing;
         p_stop <= stop; p_clear <= clear_stop; p_error <= error;
-        p_count <= count; pp_count <= p_count; p_pos <= pos; pp_pos <= p_pos;
+        p_count <= count; pp_count <= p_count; p_pos <= pos_low; pp_pos <= p_pos;
         pp_judged <= judged;
     end
     wire cause = p_beyond && !p_align;   // beyond the limit at the last edge, and no align in that clock

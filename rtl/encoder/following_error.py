@@ -21,14 +21,15 @@ def following_error(clock, reset, check):
 
     modulo 2**32, round half up.  No multiplier: ``scaled`` keeps
     (pos - pos_origin) * scale + 2**15 modulo 2**48, adding or taking
-    ``scale`` as ``pos`` moves by one step (so ``pos`` may change by at
-    most one step a clock, and the model's product is the same while
-    pos - pos_origin stays within a signed 32-bit range), and its upper 32
-    bits are the rounded scaled steps.  ``align`` and the index's
-    ``zeroing`` re-align (the count's origin the count, or 0); ``align``
-    makes the error read 0 after its edge.  ``stop`` sets at the edge after
-    the one where ``error`` came to read |error| > ``limit`` (``limit`` 0:
-    off), and stays until ``clear_stop`` (a new cause in the same clock wins).
+    ``scale`` as POS moves by one step (``pos_low``, its two low bits, tell
+    which way: POS may change by at most one step a clock, and the model's
+    product is the same while pos - pos_origin stays within a signed
+    32-bit range), and its upper 32 bits are the rounded scaled steps.
+    ``align`` and the index's ``zeroing`` re-align (the count's origin the
+    count, or 0); ``align`` makes the error read 0 after its edge.
+    ``stop`` sets at the edge after the one where ``error`` came to read
+    |error| > ``limit`` (``limit`` 0: off), and stays until ``clear_stop``
+    (a new cause in the same clock wins).
 
     limit 1, scale 1.0, pos 0; the encoder's count crosses to 2 at edge 1
     (``FERROR_CLOCKS`` = 2 edges from the count to the stop):
@@ -38,7 +39,8 @@ def following_error(clock, reset, check):
         stop    0  0  0  1
     """
     scaled, scaled_now = Signal(modbv(HALF)[SUM_BITS:]), Signal(modbv(0)[SUM_BITS:])
-    last_pos, ahead, back = (Signal(modbv(0)[COUNT_BITS:]) for _ in range(3))
+    # POS moves by at most one step a clock: its two low bits tell a step up (+1 mod 4) from one down (-1)
+    last_pos, step = Signal(modbv(0)[len(check.pos_low):]), Signal(modbv(0)[len(check.pos_low):])
     rounded, moved_counts = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
     origin, difference = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
     magnitude = Signal(modbv(0)[COUNT_BITS:])
@@ -47,8 +49,7 @@ def following_error(clock, reset, check):
 
     @always_comb
     def moved():
-        ahead.next = check.pos - last_pos
-        back.next = last_pos - check.pos
+        step.next = check.pos_low - last_pos
 
     @always_comb
     def widen():
@@ -56,9 +57,9 @@ def following_error(clock, reset, check):
 
     @always_comb
     def follow():
-        if ahead == 1:
+        if step == 1:
             scaled_now.next = scaled + scale
-        elif back == 1:
+        elif step[1] and step[0]:   # -1 modulo 4
             scaled_now.next = scaled - scale
         else:
             scaled_now.next = scaled
@@ -82,7 +83,7 @@ def following_error(clock, reset, check):
 
     @always_seq(clock.posedge, reset=reset)
     def track():
-        last_pos.next = check.pos
+        last_pos.next = check.pos_low
         if check.zeroing:
             origin.next = 0
             scaled.next = HALF

@@ -11,6 +11,9 @@ from models.parameters import AXES
 from rtl.interfaces.bundle import adopt, axis_suffixes
 
 
+POS_LOW_BITS = 2   # POS modulo 4: enough to tell a step up from a step down, POS moving one step a clock
+
+
 def _word():
     return Signal(modbv(0)[COUNT_BITS:])
 
@@ -62,9 +65,9 @@ class Timestamp:
 class FollowingErrorPort:
     """One axis's following-error check (``rtl/encoder/following_error.py``).
 
-    The card drives ``count`` and ``zeroing`` (``EncoderPort``'s), ``pos``
-    (the axis's step position, a 32-bit word read signed, changing by at
-    most one step a clock), ``scale`` (ENC_SCALE, counts per step, unsigned 16.16; it
+    The card drives ``count`` and ``zeroing`` (``EncoderPort``'s),
+    ``pos_low`` (the axis's step position modulo 4, its two low bits: the
+    position changes by at most one step a clock), ``scale`` (ENC_SCALE, counts per step, unsigned 16.16; it
     changes only in a clock with ``align``), ``limit`` (FERROR_LIMIT,
     counts; 0 off), and the one-clock strobes ``align`` (re-align: a write
     of ENC_SCALE or the host's align) and ``clear_stop``.  The unit drives
@@ -73,7 +76,7 @@ class FollowingErrorPort:
 
     def __init__(self, **given):
         adopt(self, given, count=_word(), zeroing=Signal(bool(0)),
-              pos=_word(), scale=Signal(intbv(0)[SCALE_BITS:]),
+              pos_low=Signal(modbv(0)[POS_LOW_BITS:]), scale=Signal(intbv(0)[SCALE_BITS:]),
               limit=Signal(intbv(0)[LIMIT_BITS:]), align=Signal(bool(0)), clear_stop=Signal(bool(0)),
               error=_word(), stop=Signal(bool(0)))
 
