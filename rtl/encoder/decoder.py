@@ -1,7 +1,7 @@
 """The 4x quadrature / step-dir decoder and the count of one axis."""
 from myhdl import Signal, always_comb, always_seq, block, modbv
 
-from models.encoder_model import COUNT_BITS, ERROR_COUNT_MAX
+from models.encoder_model import ERROR_COUNT_MAX
 
 
 @block
@@ -35,7 +35,7 @@ def decoder(clock, reset, a, b, port):
     seen_a, seen_b = Signal(bool(0)), Signal(bool(0))
     changed_a, changed_b = Signal(bool(0)), Signal(bool(0))
     up, down, illegal = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    base = Signal(modbv(0)[COUNT_BITS:])   # the count this sample counts from: 0 when the index zeroes it
+    base = Signal(modbv(0)[len(port.count):])   # the count this sample counts from: 0 when the index zeroes it
 
     @always_comb
     def changes():

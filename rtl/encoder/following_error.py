@@ -1,11 +1,10 @@
 """One axis's following error: encoder count against the scaled step position, and its stop flag."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv, modbv
+from myhdl import Signal, always_comb, always_seq, block, intbv, modbv
 
-from models.encoder_model import COUNT_BITS, SCALE_FRACTION_BITS
+from models.encoder_model import SCALE_FRACTION_BITS
 from rtl.interfaces import FollowingErrorPort, card_reset
 
-SUM_BITS = COUNT_BITS + SCALE_FRACTION_BITS     # the scaled position: 32 integer bits, 16 fraction bits
-HALF = 1 << (SCALE_FRACTION_BITS - 1)           # kept added in: the integer bits are then rounded half up
+HALF = 1 << (SCALE_FRACTION_BITS - 1)   # kept added in: the integer bits are then rounded half up
 
 
 @block
@@ -38,13 +37,13 @@ def following_error(clock, reset, check):
         error   1  1  2  2
         stop    0  0  0  1
     """
-    scaled, scaled_now = Signal(modbv(HALF)[SUM_BITS:]), Signal(modbv(0)[SUM_BITS:])
+    word = len(check.count)
+    sum_bits = word + SCALE_FRACTION_BITS   # the scaled position: the count's integer bits, 16 fraction bits
+    scaled, scaled_now = Signal(modbv(HALF)[sum_bits:]), Signal(modbv(0)[sum_bits:])
     # POS moves by at most one step a clock: its two low bits tell a step up (+1 mod 4) from one down (-1)
     last_pos, step = Signal(modbv(0)[len(check.pos_low):]), Signal(modbv(0)[len(check.pos_low):])
-    rounded, moved_counts = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
-    origin, difference = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
-    magnitude = Signal(modbv(0)[COUNT_BITS:])
-    scale = Signal(intbv(0)[SUM_BITS:])
+    rounded, moved_counts, origin, difference, magnitude = (Signal(modbv(0)[word:]) for _ in range(5))
+    scale = Signal(intbv(0)[sum_bits:])
     beyond = Signal(bool(0))
 
     @always_comb
@@ -53,7 +52,8 @@ def following_error(clock, reset, check):
 
     @always_comb
     def widen():
-        scale.next = concat(intbv(0)[SUM_BITS - len(check.scale):], check.scale)
+        scale.next = 0
+        scale.next[len(check.scale):] = check.scale
 
     @always_comb
     def follow():
@@ -66,13 +66,13 @@ def following_error(clock, reset, check):
 
     @always_comb
     def round_half_up():
-        rounded.next = scaled_now[SUM_BITS:SCALE_FRACTION_BITS]
+        rounded.next = scaled_now[sum_bits:SCALE_FRACTION_BITS]
         moved_counts.next = check.count - origin
 
     @always_comb
     def compare():
         difference.next = moved_counts - rounded
-        if check.error[COUNT_BITS - 1]:
+        if check.error[word - 1]:
             magnitude.next = ~check.error + 1
         else:
             magnitude.next = check.error
