@@ -215,13 +215,20 @@ class Unit:
             self.ports = {name: self._proxy(name, value) for name, value in ports.items()}
 
     def _proxy(self, name, value):
-        if not hasattr(value, "__dict__") or hasattr(value, "_val"):   # a Signal
-            return _VerilatedPort(self.model, name)
+        if hasattr(value, "_val"):   # a Signal
+            return self._port(name, value)
         proxy = copy.copy(value)
         for attribute, member in vars(value).items():
             if hasattr(member, "_val"):
-                setattr(proxy, attribute, _VerilatedPort(self.model, f"{name}_{attribute}"))
+                setattr(proxy, attribute, self._port(f"{name}_{attribute}", member))
         return proxy
+
+    def _port(self, name, signal):
+        """The model's port ``name``; an input starts at ``signal``'s initial value, as in MyHDL."""
+        port = _VerilatedPort(self.model, name)
+        if name in self.model.ports and not self.model.ports[name][2]:
+            port.next = int(signal.val)
+        return port
 
     def run(self, name, step, cycles):
         if self.backend != "verilator":
