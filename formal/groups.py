@@ -198,6 +198,7 @@ ENCODER = dict(convert=encoder_unit("encoder"), expose=ENCODER_SIGNALS)
 ENCODER_PARAMETERS = dict(ERROR_MAX=ERROR_COUNT_MAX)
 ENCODER_FILES = [*RESET_FILES, "encoder_harness.sv"]
 FERROR_FILES = [*RESET_FILES, "following_error_harness.sv"]
+PROBE_FILES = [*RESET_FILES, "probe_harness.sv"]
 PCI_HELPERS = dict(expose=PCI_SLAVE_REGISTERS, includes=("pci_slave_invariants.vh",),
                    defines={"PCI_SLAVE_INVARIANTS": None}, generated=PCI_TABLE)
 
@@ -282,6 +283,8 @@ GROUPS = [
     Group("following_error", "following_error", FERROR_FILES, "following_error_harness", ("fe_",), depth=4,
           convert=encoder_unit("following_error"),
           text="the following-error stop never within the limit, always beyond it; the error follows the count"),
+    Group("probe_latch", "probe", PROBE_FILES, "probe_harness", ("prb_",), depth=8, convert=encoder_unit("probe"),
+          expose=("level", "seen"), text="the probe latches every axis's count and POS at an armed rise, once per arm"),
     Group("dda_lines", "dda_arc", ["dda_harness.sv"], "dda_harness", ("dda_",), mode="bmc", depth=20,
           defines={"DDA_LINES": None, "DDA_FULL_SPEED": None}, **DDA,
           text="lines of the 6-bit DDA: steps, end point, end counters, finishing (bounded)"),

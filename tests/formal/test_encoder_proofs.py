@@ -1,5 +1,5 @@
 """The encoder's proofs (formal/props/encoder_harness.sv,
-following_error_harness.sv; run with the other groups by test_formal.py)
+following_error_harness.sv, probe_harness.sv; run with the other groups by test_formal.py)
 can fail: each defect put by hand into a copy of a unit's Verilog (the
 benches' ``DEFECTS``) is rejected by the group named, with a rule of its
 kind."""
@@ -21,6 +21,8 @@ JUDGES = {
     "the_index_not_disarmed": ("encoder_index", {"idx_disarms_as_it_fires", "idx_once_per_arm",
                                                  "idx_inv_fired_means_disarmed"}),
     "the_stop_at_the_limit": ("following_error", {"fe_never_within_the_limit"}),
+    "the_probe_on_its_level": ("probe_latch", {"prb_fires_at_an_armed_rise", "prb_once_per_arm",
+                                               "prb_inv_fired_means_disarmed"}),
 }
 
 
