@@ -42,7 +42,8 @@ def following_error(clock, reset, check):
     scaled, scaled_now = Signal(modbv(HALF)[sum_bits:]), Signal(modbv(0)[sum_bits:])
     # POS moves by at most one step a clock: its two low bits tell a step up (+1 mod 4) from one down (-1)
     last_pos, step = Signal(modbv(0)[len(check.pos_low):]), Signal(modbv(0)[len(check.pos_low):])
-    rounded, moved_counts, origin, difference, magnitude = (Signal(modbv(0)[word:]) for _ in range(5))
+    rounded, moved_counts, origin, difference, folded = (Signal(modbv(0)[word:]) for _ in range(5))
+    negative = Signal(bool(0))
     scale = Signal(intbv(0)[sum_bits:])
     beyond = Signal(bool(0))
 
@@ -72,14 +73,17 @@ def following_error(clock, reset, check):
     @always_comb
     def compare():
         difference.next = moved_counts - rounded
+        negative.next = check.error[word - 1]
         if check.error[word - 1]:
-            magnitude.next = ~check.error + 1
+            folded.next = ~check.error   # |error| - 1
         else:
-            magnitude.next = check.error
+            folded.next = check.error
 
     @always_comb
     def judge():
-        beyond.next = check.limit != 0 and magnitude > check.limit and not check.align
+        # |error| > limit: error > limit, or for a negative error ~error = |error| - 1 >= limit
+        beyond.next = (check.limit != 0 and not check.align
+                       and (folded > check.limit or (negative and folded == check.limit)))
 
     @always_seq(clock.posedge, reset=reset)
     def track():

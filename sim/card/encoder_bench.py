@@ -409,7 +409,7 @@ DEFECTS = {
     "step_dir_counting_both_edges_of_a": ("encoder", [(r"\(conditioner_a_level && \(!decoder_seen_a\) && "
                                                        r"conditioner_b_level\)",
                                                        "(decoder_changed_a && conditioner_b_level)")]),
-    "the_stop_at_the_limit": ("following_error", [(r"\(magnitude > check_limit\)", "(magnitude >= check_limit)")]),
+    "the_stop_at_the_limit": ("following_error", [(r"\(folded > check_limit\)", "(folded >= check_limit)")]),
     "the_steps_scaled_one_late": ("following_error", [(r"rounded = scaled_now\[", "rounded = scaled[")]),
     "the_probe_on_its_level": ("probe", [(r"\(armed_now && level && \(!seen\)\)", "(armed_now && level)")]),
 }
