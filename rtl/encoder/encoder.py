@@ -44,9 +44,7 @@ def encoder(clock, reset, pins, port):
         inverts[2].next = (port.polarity & POLARITY_INDEX) != 0
 
     inputs = [named(f"conditioner_{name}", conditioner(clock, reset, pin, invert, port.filter, level))
-              for name, pin, invert, level in zip("ab", (pins.a, pins.b), inverts, levels)]
-    inputs.append(named("conditioner_index", conditioner(clock, reset, pins.index, inverts[2], port.filter,
-                                                         levels[2])))
+              for name, pin, invert, level in zip(("a", "b", "index"), (pins.a, pins.b, pins.index), inverts, levels)]
     return (polarities, inputs, named("decoder", decoder(clock, reset, levels[0], levels[1], port)),
             named("index_latch", index_latch(clock, reset, levels[2], port)))
 
