@@ -115,6 +115,36 @@ input pins_home_x;
 input pins_home_y;
 
 wire irq;
+reg pci_slave1_idsel_q;
+reg pci_slave1_frame_q;
+reg pci_slave1_frame_qq;
+reg pci_slave1_irdy_q;
+wire [3:0] pci_slave1_state_next;
+wire pci_slave1_trdy_next;
+wire pci_slave1_stop_next;
+wire pci_slave1_devsel_next;
+wire pci_slave1_drive_next;
+wire pci_slave1_ad_oe_next;
+reg pci_slave1_trdy_q;
+reg pci_slave1_stop_q;
+reg pci_slave1_devsel_q;
+reg [31:0] pci_slave1_ad_out_q;
+reg pci_slave1_ad_parity_q;
+reg pci_slave1_perr_q;
+reg [3:0] pci_slave1_state;
+reg pci_slave1_is_read;
+reg pci_slave1_space_mem;
+reg pci_slave1_single;
+reg pci_slave1_first_phase;
+reg pci_slave1_first_pending;
+reg pci_slave1_fetching;
+reg pci_slave1_address_fault;
+reg [3:0] pci_slave1_wait_count;
+reg pci_slave1_initial_wait_over;
+reg pci_slave1_subsequent_wait_over;
+reg [9:0] pci_slave1_req_addr;
+reg pci_slave1_req_addr_stale;
+reg [1:0] pci_slave1_io_byte;
 reg pci_slave1_wq_valid;
 reg pci_slave1_h_valid;
 reg pci_slave1_s_valid;
@@ -127,104 +157,74 @@ reg pci_slave1_io_enable;
 reg pci_slave1_mem_enable;
 reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
+reg pci_slave1_interrupt_disable;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
 reg [31:0] pci_slave1_bar2;
 reg pci_slave1_fatal;
+reg pci_slave1_parity_error_q;
+wire pci_slave1_address_phase;
+reg pci_slave1_ad_out_parity;
+wire pci_slave1_perr_next;
+wire pci_slave1_perr_oe_next;
+wire pci_slave1_serr_oe_next;
+wire pci_slave1_address_fault_next;
+wire pci_slave1_parity_error_next;
+reg pci_slave1_claim;
+reg pci_slave1_claim_config;
+reg pci_slave1_claim_io;
+reg pci_slave1_claim_alias;
 reg pci_slave1_read_command;
+wire pci_slave1_first_phase_next;
+wire pci_slave1_phase_step;
 wire pci_slave1_write_done_next;
 wire pci_slave1_config_write_next;
 wire pci_slave1_posting;
 wire pci_slave1_wq_valid_next;
 reg pci_slave1_b_kept;
 wire pci_slave1_b_valid_next;
+reg [9:0] pci_slave1_start_addr;
+wire pci_slave1_got;
+wire pci_slave1_accepted;
 reg pci_slave1_first_ready;
 reg pci_slave1_fetch_more;
 wire pci_slave1_hold_got;
 wire pci_slave1_hold_accepted;
 wire pci_slave1_hold_retry;
 wire pci_slave1_burst_got;
-reg [1:0] pci_slave1_buffered_next;
-wire pci_slave1_accepted;
-wire pci_slave1_ad_oe_next;
-reg [31:0] pci_slave1_ad_out_next;
-reg pci_slave1_ad_out_parity;
-reg [31:0] pci_slave1_ad_out_q;
-reg pci_slave1_ad_parity_q;
-reg [31:0] pci_slave1_ad_q;
-reg pci_slave1_address_fault;
-wire pci_slave1_address_fault_next;
-wire pci_slave1_address_phase;
-reg pci_slave1_at_last;
-reg pci_slave1_b_valid;
-reg pci_slave1_before_last;
-reg [3:0] pci_slave1_cbe_q;
-reg pci_slave1_claim;
-reg pci_slave1_claim_alias;
-reg pci_slave1_claim_config;
-reg pci_slave1_claim_io;
-wire pci_slave1_devsel_next;
-reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
-wire pci_slave1_drive_next;
-reg pci_slave1_fetching;
-reg pci_slave1_first_pending;
-reg pci_slave1_first_phase;
-wire pci_slave1_first_phase_next;
-reg pci_slave1_frame_q;
-reg pci_slave1_frame_qq;
-wire pci_slave1_got;
-reg pci_slave1_idsel_q;
-reg pci_slave1_initial_wait_over;
-reg pci_slave1_interrupt_disable;
-reg [1:0] pci_slave1_io_byte;
-reg pci_slave1_irdy_q;
-reg pci_slave1_is_config;
-reg pci_slave1_is_read;
-wire pci_slave1_parity_error_next;
-reg pci_slave1_parity_error_q;
-wire pci_slave1_perr_next;
-wire pci_slave1_perr_oe_next;
-reg pci_slave1_perr_q;
-reg [9:0] pci_slave1_phase_addr;
-wire pci_slave1_phase_step;
-reg [31:0] pci_slave1_read_source;
-reg [9:0] pci_slave1_req_addr;
-reg pci_slave1_req_addr_stale;
-wire pci_slave1_serr_oe_next;
-reg pci_slave1_single;
-reg pci_slave1_space_mem;
-reg [31:0] pci_slave1_spare_data;
-reg [9:0] pci_slave1_start_addr;
-reg [3:0] pci_slave1_state;
-wire [3:0] pci_slave1_state_next;
-wire pci_slave1_stop_next;
-reg pci_slave1_stop_q;
-reg pci_slave1_subsequent_wait_over;
-reg pci_slave1_timeout;
-wire pci_slave1_trdy_next;
-reg pci_slave1_trdy_q;
-reg [3:0] pci_slave1_wait_count;
+reg [1:0] pci_slave1_buffered_next;
 reg pci_slave1_waiting;
+reg pci_slave1_timeout;
+reg pci_slave1_at_last;
+reg pci_slave1_before_last;
+reg [31:0] pci_slave1_ad_q;
+reg pci_slave1_b_valid;
+reg [3:0] pci_slave1_cbe_q;
+reg pci_slave1_is_config;
+reg [9:0] pci_slave1_phase_addr;
+reg [31:0] pci_slave1_read_source;
+reg [31:0] pci_slave1_spare_data;
 reg [31:0] pci_slave1_config_rdata;
 reg [31:0] pci_slave1_local_rdata;
-reg pci_slave1_local_re;
-reg pci_slave1_local_ready;
-reg pci_slave1_local_retry;
-reg pci_slave1_local_we;
 wire [5:0] pci_slave1_config_index;
 wire [31:0] pci_slave1_config_data;
 wire [3:0] pci_slave1_config_cbe_n;
 wire pci_slave1_config_system_error;
 wire pci_slave1_config_irq;
+reg [31:0] pci_slave1_pci_boundary1_ad_out_next;
 reg pci_slave1_pci_parity1_bus_parity;
 wire pci_slave1_pci_parity1_perr_armed;
 wire pci_slave1_pci_parity1_serr_armed;
+reg pci_slave1_pci_requests1_local_re;
+reg pci_slave1_pci_requests1_local_we;
 reg pci_slave1_pci_requests1_local_space;
 reg pci_slave1_pci_requests1_local_write;
 reg [31:0] pci_slave1_pci_requests1_local_wdata;
 reg [3:0] pci_slave1_pci_requests1_local_be;
 reg [11:0] pci_slave1_pci_requests1_local_addr;
+reg pci_slave1_pci_requests1_local_ready;
+reg pci_slave1_pci_requests1_local_retry;
 reg pci_slave1_pci_control1_control_case0_0_exhausted;
 reg pci_slave1_pci_control1_control_case0_0_last_data;
 reg pci_slave1_pci_control1_control_case0_0_ready_for_phase;
@@ -1135,11 +1135,11 @@ assign card_core0_regs_fifo1_input_filter1_inputs_pins[1] = pins_limit_pos_x;
 assign card_core0_regs_fifo1_input_filter1_inputs_pins[0] = pins_estop;
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_input_register
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_input_register
     if (reset == 0) begin
-        pci_slave1_ad_q <= 0;
-        pci_slave1_idsel_q <= 0;
         pci_slave1_cbe_q <= 15;
+        pci_slave1_idsel_q <= 0;
+        pci_slave1_ad_q <= 0;
     end
     else begin
         pci_slave1_ad_q <= pci_ad_in;
@@ -1149,11 +1149,11 @@ always @(posedge clock, negedge reset) begin: pci_slave1_input_register
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_control_input_register
     if (reset == 0) begin
-        pci_slave1_frame_q <= 1;
-        pci_slave1_frame_qq <= 1;
         pci_slave1_irdy_q <= 1;
+        pci_slave1_frame_qq <= 1;
+        pci_slave1_frame_q <= 1;
     end
     else begin
         pci_slave1_frame_q <= pci_frame_in;
@@ -1161,6 +1161,66 @@ always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
         pci_slave1_irdy_q <= pci_irdy_in;
     end
 end
+
+
+always @(pci_slave1_read_source, pci_irdy_in, pci_slave1_trdy_q, pci_slave1_ad_out_q) begin: pci_slave1_pci_boundary1_ad_output
+    if ((pci_irdy_in && (!pci_slave1_trdy_q))) begin
+        pci_slave1_pci_boundary1_ad_out_next = pci_slave1_ad_out_q;
+    end
+    else begin
+        pci_slave1_pci_boundary1_ad_out_next = pci_slave1_read_source;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_bus_registers
+    if (reset == 0) begin
+        pci_slave1_devsel_q <= 1;
+        pci_perr_oe <= 0;
+        pci_slave1_perr_q <= 1;
+        pci_slave1_ad_parity_q <= 0;
+        pci_slave1_trdy_q <= 1;
+        pci_slave1_stop_q <= 1;
+        pci_stop_oe <= 0;
+        pci_serr_out <= 1;
+        pci_slave1_ad_out_q <= 0;
+        pci_ad_oe <= 0;
+        pci_inta_oe <= 0;
+        pci_devsel_oe <= 0;
+        pci_par_oe <= 0;
+        pci_inta_out <= 1;
+        pci_trdy_oe <= 0;
+        pci_slave1_parity_error_q <= 0;
+        pci_serr_oe <= 0;
+    end
+    else begin
+        pci_slave1_trdy_q <= pci_slave1_trdy_next;
+        pci_slave1_stop_q <= pci_slave1_stop_next;
+        pci_slave1_devsel_q <= pci_slave1_devsel_next;
+        pci_slave1_ad_out_q <= pci_slave1_pci_boundary1_ad_out_next;
+        pci_slave1_perr_q <= pci_slave1_perr_next;
+        pci_slave1_ad_parity_q <= pci_slave1_ad_out_parity;
+        pci_trdy_oe <= pci_slave1_drive_next;
+        pci_stop_oe <= pci_slave1_drive_next;
+        pci_devsel_oe <= pci_slave1_drive_next;
+        pci_ad_oe <= pci_slave1_ad_oe_next;
+        pci_par_oe <= pci_ad_oe;
+        pci_perr_oe <= pci_slave1_perr_oe_next;
+        pci_serr_out <= 1'b0;
+        pci_serr_oe <= pci_slave1_serr_oe_next;
+        pci_slave1_parity_error_q <= pci_slave1_parity_error_next;
+        pci_inta_out <= 1'b0;
+        pci_inta_oe <= (irq && (!pci_slave1_interrupt_disable));
+    end
+end
+
+
+
+assign pci_trdy_out = pci_slave1_trdy_q;
+assign pci_stop_out = pci_slave1_stop_q;
+assign pci_devsel_out = pci_slave1_devsel_q;
+assign pci_ad_out = pci_slave1_ad_out_q;
+assign pci_perr_out = pci_slave1_perr_q;
 
 
 always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_parity1_parity_check
@@ -1305,8 +1365,8 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     first_open = (pci_slave1_first_pending && hold_state && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
     first = (first_open && (!bad));
     prefetch = ((pci_slave1_state == 4'b0110) && pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
-    pci_slave1_local_re = ((first && pci_slave1_is_read) || prefetch);
-    pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
+    pci_slave1_pci_requests1_local_re = ((first && pci_slave1_is_read) || prefetch);
+    pci_slave1_pci_requests1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
     pci_slave1_first_ready = (pci_slave1_first_pending && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
     pci_slave1_fetch_more = (pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
     pci_slave1_pci_requests1_local_space = (drain || pci_slave1_space_mem);
@@ -1329,12 +1389,12 @@ end
 
 
 assign pci_slave1_draining = (pci_slave1_h_valid || pci_slave1_wq_valid);
-assign pci_slave1_got = ((pci_slave1_local_re && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
-assign pci_slave1_accepted = (pci_slave1_local_we && pci_slave1_local_ready);
-assign pci_slave1_hold_got = (pci_slave1_first_ready && pci_slave1_is_read && pci_slave1_local_ready);
-assign pci_slave1_hold_accepted = (pci_slave1_first_ready && (!pci_slave1_is_read) && (!pci_slave1_irdy_q) && pci_slave1_local_ready);
-assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read || (!pci_slave1_irdy_q)) && pci_slave1_local_retry);
-assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_local_ready);
+assign pci_slave1_got = ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
+assign pci_slave1_accepted = (pci_slave1_pci_requests1_local_we && pci_slave1_pci_requests1_local_ready);
+assign pci_slave1_hold_got = (pci_slave1_first_ready && pci_slave1_is_read && pci_slave1_pci_requests1_local_ready);
+assign pci_slave1_hold_accepted = (pci_slave1_first_ready && (!pci_slave1_is_read) && (!pci_slave1_irdy_q) && pci_slave1_pci_requests1_local_ready);
+assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read || (!pci_slave1_irdy_q)) && pci_slave1_pci_requests1_local_retry);
+assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_pci_requests1_local_ready);
 
 
 always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
@@ -1347,14 +1407,6 @@ always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_
     else begin
         pci_slave1_read_source = pci_slave1_local_rdata;
     end
-end
-
-
-always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_phase, pci_slave1_initial_wait_over, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_latency
-    reg target_waits;
-    target_waits = (pci_slave1_trdy_q && pci_slave1_stop_q && (pci_slave1_state != 4'b0000) && (pci_slave1_state != 4'b0111) && (pci_slave1_state != 4'b1000));
-    pci_slave1_waiting = target_waits;
-    pci_slave1_timeout = (target_waits && ((pci_slave1_first_phase && pci_slave1_initial_wait_over) || ((!pci_slave1_first_phase) && pci_slave1_subsequent_wait_over)));
 end
 
 
@@ -1952,14 +2004,22 @@ wire pci_slave1_ad_oe_next_y0 = pci_slave1_pci_control1_control_case2_0_out_ad_o
 assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_phase_registers
+always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_initial_wait_over, pci_slave1_first_phase, pci_slave1_trdy_q, pci_slave1_state) begin: pci_slave1_pci_transaction1_latency
+    reg target_waits;
+    target_waits = (pci_slave1_trdy_q && pci_slave1_stop_q && (pci_slave1_state != 4'b0000) && (pci_slave1_state != 4'b0111) && (pci_slave1_state != 4'b1000));
+    pci_slave1_waiting = target_waits;
+    pci_slave1_timeout = (target_waits && ((pci_slave1_first_phase && pci_slave1_initial_wait_over) || ((!pci_slave1_first_phase) && pci_slave1_subsequent_wait_over)));
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_phase_registers
     if (reset == 0) begin
-        pci_slave1_before_last <= 0;
         pci_slave1_address_fault <= 0;
         pci_slave1_at_last <= 0;
-        pci_slave1_first_phase <= 0;
-        pci_slave1_state <= 4'b0000;
         pci_slave1_phase_addr <= 0;
+        pci_slave1_first_phase <= 0;
+        pci_slave1_before_last <= 0;
+        pci_slave1_state <= 4'b0000;
     end
     else begin
         pci_slave1_state <= pci_slave1_state_next;
@@ -1981,15 +2041,15 @@ always @(posedge clock, negedge reset) begin: pci_slave1_phase_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_transaction_kind
     if (reset == 0) begin
         pci_slave1_is_config <= 0;
-        pci_slave1_first_pending <= 0;
-        pci_slave1_space_mem <= 0;
-        pci_slave1_io_byte <= 0;
-        pci_slave1_single <= 0;
-        pci_slave1_is_read <= 0;
         pci_slave1_fetching <= 0;
+        pci_slave1_space_mem <= 0;
+        pci_slave1_first_pending <= 0;
+        pci_slave1_single <= 0;
+        pci_slave1_io_byte <= 0;
+        pci_slave1_is_read <= 0;
     end
     else begin
         if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase)) begin
@@ -2005,10 +2065,10 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
             if ((pci_slave1_got || pci_slave1_accepted)) begin
                 pci_slave1_first_pending <= (pci_slave1_first_pending && pci_slave1_draining);
             end
-            if ((pci_slave1_local_re && pci_slave1_local_ready && (pci_slave1_single || (pci_slave1_req_addr == 1023)))) begin
+            if ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_ready && (pci_slave1_single || (pci_slave1_req_addr == 1023)))) begin
                 pci_slave1_fetching <= 1'b0;
             end
-            if ((pci_slave1_local_re && pci_slave1_local_retry && (!pci_slave1_first_pending))) begin
+            if ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_retry && (!pci_slave1_first_pending))) begin
                 pci_slave1_fetching <= 1'b0;
             end
         end
@@ -2016,16 +2076,16 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_request_address
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_request_address
     if (reset == 0) begin
-        pci_slave1_req_addr <= 0;
         pci_slave1_req_addr_stale <= 0;
+        pci_slave1_req_addr <= 0;
     end
     else begin
         if (pci_slave1_claim) begin
             pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
-        if (((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_ready)) begin
+        if (((pci_slave1_pci_requests1_local_re || pci_slave1_pci_requests1_local_we) && pci_slave1_pci_requests1_local_ready)) begin
             pci_slave1_req_addr <= (pci_slave1_req_addr + 1);
         end
         else if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (!pci_slave1_draining))) begin
@@ -2040,7 +2100,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_request_address
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_latency_count
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_latency_count
     if (reset == 0) begin
         pci_slave1_subsequent_wait_over <= 0;
         pci_slave1_wait_count <= 0;
@@ -2059,66 +2119,6 @@ always @(posedge clock, negedge reset) begin: pci_slave1_latency_count
         end
     end
 end
-
-
-always @(pci_slave1_read_source, pci_slave1_ad_out_q, pci_irdy_in, pci_slave1_trdy_q) begin: pci_slave1_ad_output
-    if ((pci_irdy_in && (!pci_slave1_trdy_q))) begin
-        pci_slave1_ad_out_next = pci_slave1_ad_out_q;
-    end
-    else begin
-        pci_slave1_ad_out_next = pci_slave1_read_source;
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
-    if (reset == 0) begin
-        pci_trdy_oe <= 0;
-        pci_slave1_ad_parity_q <= 0;
-        pci_perr_oe <= 0;
-        pci_slave1_ad_out_q <= 0;
-        pci_stop_oe <= 0;
-        pci_serr_out <= 1;
-        pci_ad_oe <= 0;
-        pci_inta_oe <= 0;
-        pci_slave1_perr_q <= 1;
-        pci_devsel_oe <= 0;
-        pci_par_oe <= 0;
-        pci_slave1_parity_error_q <= 0;
-        pci_slave1_stop_q <= 1;
-        pci_inta_out <= 1;
-        pci_serr_oe <= 0;
-        pci_slave1_devsel_q <= 1;
-        pci_slave1_trdy_q <= 1;
-    end
-    else begin
-        pci_slave1_trdy_q <= pci_slave1_trdy_next;
-        pci_slave1_stop_q <= pci_slave1_stop_next;
-        pci_slave1_devsel_q <= pci_slave1_devsel_next;
-        pci_slave1_ad_out_q <= pci_slave1_ad_out_next;
-        pci_slave1_perr_q <= pci_slave1_perr_next;
-        pci_slave1_ad_parity_q <= pci_slave1_ad_out_parity;
-        pci_trdy_oe <= pci_slave1_drive_next;
-        pci_stop_oe <= pci_slave1_drive_next;
-        pci_devsel_oe <= pci_slave1_drive_next;
-        pci_ad_oe <= pci_slave1_ad_oe_next;
-        pci_par_oe <= pci_ad_oe;
-        pci_perr_oe <= pci_slave1_perr_oe_next;
-        pci_serr_out <= 1'b0;
-        pci_serr_oe <= pci_slave1_serr_oe_next;
-        pci_slave1_parity_error_q <= pci_slave1_parity_error_next;
-        pci_inta_out <= 1'b0;
-        pci_inta_oe <= (irq && (!pci_slave1_interrupt_disable));
-    end
-end
-
-
-
-assign pci_trdy_out = pci_slave1_trdy_q;
-assign pci_stop_out = pci_slave1_stop_q;
-assign pci_devsel_out = pci_slave1_devsel_q;
-assign pci_ad_out = pci_slave1_ad_out_q;
-assign pci_perr_out = pci_slave1_perr_q;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_read_buffer
@@ -2188,14 +2188,14 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_write_buff
             pci_slave1_h_data <= pci_slave1_ad_q;
             pci_slave1_h_be <= (~pci_slave1_cbe_q);
         end
-        if ((pci_slave1_local_re && pci_slave1_local_ready)) begin
+        if ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_ready)) begin
             pci_slave1_spare_data <= pci_slave1_local_rdata;
         end
     end
 end
 
 
-always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_pci_buffers1_posted_count
+always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_pci_requests1_local_ready, pci_slave1_s_valid) begin: pci_slave1_pci_buffers1_posted_count
     reg [2-1:0] held;
     held = 0;
     if (pci_slave1_h_valid) begin
@@ -2203,14 +2203,14 @@ always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_sl
         if (pci_slave1_s_valid) begin
             held = 2;
         end
-        if (pci_slave1_local_ready) begin
+        if (pci_slave1_pci_requests1_local_ready) begin
             held = (held - 1);
         end
         if (pci_slave1_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
+    else if ((pci_slave1_wq_valid && (!pci_slave1_pci_requests1_local_ready))) begin
         held = 1;
     end
     pci_slave1_buffered_next = held;
@@ -6075,7 +6075,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
 end
 
 
-always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_pci_requests1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_pci_requests1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (pci_slave1_pci_requests1_local_be[0]) begin
@@ -6091,15 +6091,15 @@ always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs
         mask[32-1:24] = 255;
     end
     card_core0_regs_fifo1_byte_mask = mask;
-    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written) && (!card_core0_regs_fifo1_read_waited));
-    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_write = (pci_slave1_pci_requests1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_pci_requests1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written) && (!card_core0_regs_fifo1_read_waited));
+    card_core0_regs_fifo1_push = (pci_slave1_pci_requests1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
 always @(card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_word, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
-    pci_slave1_local_ready = ((pci_slave1_pci_requests1_local_write || pci_slave1_pci_requests1_local_space || card_core0_regs_fifo1_read_waited) && (!card_core0_regs_fifo1_io_written) && (!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)));
-    pci_slave1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
+    pci_slave1_pci_requests1_local_ready = ((pci_slave1_pci_requests1_local_write || pci_slave1_pci_requests1_local_space || card_core0_regs_fifo1_read_waited) && (!card_core0_regs_fifo1_io_written) && (!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)));
+    pci_slave1_pci_requests1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
     if (pci_slave1_pci_requests1_local_space) begin
         pci_slave1_local_rdata = 0;
     end

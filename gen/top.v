@@ -111,6 +111,35 @@ reg pci_pads0_registered_pad4_enable;
 wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
+reg card1_pci_slave2_frame_q;
+reg card1_pci_slave2_frame_qq;
+reg card1_pci_slave2_irdy_q;
+wire [3:0] card1_pci_slave2_state_next;
+wire card1_pci_slave2_trdy_next;
+wire card1_pci_slave2_stop_next;
+wire card1_pci_slave2_devsel_next;
+wire card1_pci_slave2_drive_next;
+wire card1_pci_slave2_ad_oe_next;
+reg card1_pci_slave2_trdy_q;
+reg card1_pci_slave2_stop_q;
+reg card1_pci_slave2_devsel_q;
+reg [31:0] card1_pci_slave2_ad_out_q;
+reg card1_pci_slave2_ad_parity_q;
+reg card1_pci_slave2_perr_q;
+reg [3:0] card1_pci_slave2_state;
+reg card1_pci_slave2_is_read;
+reg card1_pci_slave2_space_mem;
+reg card1_pci_slave2_single;
+reg card1_pci_slave2_first_phase;
+reg card1_pci_slave2_first_pending;
+reg card1_pci_slave2_fetching;
+reg card1_pci_slave2_address_fault;
+reg [3:0] card1_pci_slave2_wait_count;
+reg card1_pci_slave2_initial_wait_over;
+reg card1_pci_slave2_subsequent_wait_over;
+reg [9:0] card1_pci_slave2_req_addr;
+reg card1_pci_slave2_req_addr_stale;
+reg [1:0] card1_pci_slave2_io_byte;
 reg card1_pci_slave2_wq_valid;
 reg card1_pci_slave2_h_valid;
 reg card1_pci_slave2_s_valid;
@@ -123,101 +152,104 @@ reg card1_pci_slave2_io_enable;
 reg card1_pci_slave2_mem_enable;
 reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
+reg card1_pci_slave2_interrupt_disable;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
 reg [31:0] card1_pci_slave2_bar2;
 reg card1_pci_slave2_fatal;
+reg card1_pci_slave2_parity_error_q;
+wire card1_pci_slave2_address_phase;
+reg card1_pci_slave2_ad_out_parity;
+wire card1_pci_slave2_perr_next;
+wire card1_pci_slave2_perr_oe_next;
+wire card1_pci_slave2_serr_oe_next;
+wire card1_pci_slave2_address_fault_next;
+wire card1_pci_slave2_parity_error_next;
+reg card1_pci_slave2_claim;
+reg card1_pci_slave2_claim_config;
+reg card1_pci_slave2_claim_io;
+reg card1_pci_slave2_claim_alias;
 reg card1_pci_slave2_read_command;
+wire card1_pci_slave2_first_phase_next;
+wire card1_pci_slave2_phase_step;
 wire card1_pci_slave2_write_done_next;
 wire card1_pci_slave2_config_write_next;
 wire card1_pci_slave2_posting;
 wire card1_pci_slave2_wq_valid_next;
 reg card1_pci_slave2_b_kept;
 wire card1_pci_slave2_b_valid_next;
+reg [9:0] card1_pci_slave2_start_addr;
+wire card1_pci_slave2_got;
+wire card1_pci_slave2_accepted;
 reg card1_pci_slave2_first_ready;
 reg card1_pci_slave2_fetch_more;
 wire card1_pci_slave2_hold_got;
 wire card1_pci_slave2_hold_accepted;
 wire card1_pci_slave2_hold_retry;
 wire card1_pci_slave2_burst_got;
-reg [1:0] card1_pci_slave2_buffered_next;
-wire card1_pci_slave2_accepted;
-wire card1_pci_slave2_ad_oe_next;
-wire [31:0] card1_pci_slave2_ad_out_next;
-reg card1_pci_slave2_ad_out_parity;
-reg [31:0] card1_pci_slave2_ad_out_q;
-reg card1_pci_slave2_ad_parity_q;
-reg card1_pci_slave2_address_fault;
-wire card1_pci_slave2_address_fault_next;
-wire card1_pci_slave2_address_phase;
-reg card1_pci_slave2_at_last;
-reg card1_pci_slave2_b_valid;
-reg card1_pci_slave2_before_last;
-reg card1_pci_slave2_claim;
-reg card1_pci_slave2_claim_alias;
-reg card1_pci_slave2_claim_config;
-reg card1_pci_slave2_claim_io;
-wire card1_pci_slave2_devsel_next;
-reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
-wire card1_pci_slave2_drive_next;
-reg card1_pci_slave2_fetching;
-reg card1_pci_slave2_first_pending;
-reg card1_pci_slave2_first_phase;
-wire card1_pci_slave2_first_phase_next;
-reg card1_pci_slave2_frame_q;
-reg card1_pci_slave2_frame_qq;
-wire card1_pci_slave2_got;
-reg card1_pci_slave2_initial_wait_over;
-reg card1_pci_slave2_interrupt_disable;
-reg [1:0] card1_pci_slave2_io_byte;
-reg card1_pci_slave2_irdy_q;
-reg card1_pci_slave2_is_config;
-reg card1_pci_slave2_is_read;
-wire card1_pci_slave2_parity_error_next;
-reg card1_pci_slave2_parity_error_q;
-wire card1_pci_slave2_perr_next;
-wire card1_pci_slave2_perr_oe_next;
-reg card1_pci_slave2_perr_q;
-reg [9:0] card1_pci_slave2_phase_addr;
-wire card1_pci_slave2_phase_step;
-reg [31:0] card1_pci_slave2_read_source;
-reg [9:0] card1_pci_slave2_req_addr;
-reg card1_pci_slave2_req_addr_stale;
-wire card1_pci_slave2_serr_oe_next;
-reg card1_pci_slave2_single;
-reg card1_pci_slave2_space_mem;
-reg [31:0] card1_pci_slave2_spare_data;
-reg [9:0] card1_pci_slave2_start_addr;
-reg [3:0] card1_pci_slave2_state;
-wire [3:0] card1_pci_slave2_state_next;
-wire card1_pci_slave2_stop_next;
-reg card1_pci_slave2_stop_q;
-reg card1_pci_slave2_subsequent_wait_over;
-reg card1_pci_slave2_timeout;
-wire card1_pci_slave2_trdy_next;
-reg card1_pci_slave2_trdy_q;
-reg [3:0] card1_pci_slave2_wait_count;
+reg [1:0] card1_pci_slave2_buffered_next;
 reg card1_pci_slave2_waiting;
+reg card1_pci_slave2_timeout;
+reg card1_pci_slave2_at_last;
+reg card1_pci_slave2_before_last;
+reg card1_pci_slave2_b_valid;
+reg card1_pci_slave2_is_config;
+reg [9:0] card1_pci_slave2_phase_addr;
+reg [31:0] card1_pci_slave2_read_source;
+reg [31:0] card1_pci_slave2_spare_data;
 reg [31:0] card1_pci_slave2_config_rdata;
 reg [31:0] card1_pci_slave2_local_rdata;
-reg card1_pci_slave2_local_re;
-reg card1_pci_slave2_local_ready;
-reg card1_pci_slave2_local_retry;
-reg card1_pci_slave2_local_we;
 wire [5:0] card1_pci_slave2_config_index;
 wire [31:0] card1_pci_slave2_config_data;
 wire [3:0] card1_pci_slave2_config_cbe_n;
 wire card1_pci_slave2_config_system_error;
 wire card1_pci_slave2_config_irq;
+wire [31:0] card1_pci_slave2_pci_boundary2_ad_out_next;
+wire card1_pci_slave2_pci_boundary2_pin_lut22_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut23_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut24_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut25_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut26_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut27_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut28_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut29_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut30_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut31_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut32_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut33_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut34_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut35_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut36_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut37_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut38_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut39_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut40_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut41_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut42_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut43_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut44_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut45_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut46_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut47_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut48_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut49_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut50_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut51_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut52_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut53_out;
 reg card1_pci_slave2_pci_parity2_bus_parity;
 wire card1_pci_slave2_pci_parity2_perr_armed;
 wire card1_pci_slave2_pci_parity2_serr_armed;
+reg card1_pci_slave2_pci_requests2_local_re;
+reg card1_pci_slave2_pci_requests2_local_we;
 reg card1_pci_slave2_pci_requests2_local_space;
 reg card1_pci_slave2_pci_requests2_local_write;
 reg [31:0] card1_pci_slave2_pci_requests2_local_wdata;
 reg [3:0] card1_pci_slave2_pci_requests2_local_be;
 reg [11:0] card1_pci_slave2_pci_requests2_local_addr;
+reg card1_pci_slave2_pci_requests2_local_ready;
+reg card1_pci_slave2_pci_requests2_local_retry;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_exhausted;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_last_data;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase;
@@ -246,38 +278,6 @@ reg card1_pci_slave2_pci_control2_control_case2_0_1_out_stop;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_drive;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe;
-wire card1_pci_slave2_pin_lut33_out;
-wire card1_pci_slave2_pin_lut34_out;
-wire card1_pci_slave2_pin_lut35_out;
-wire card1_pci_slave2_pin_lut36_out;
-wire card1_pci_slave2_pin_lut37_out;
-wire card1_pci_slave2_pin_lut38_out;
-wire card1_pci_slave2_pin_lut39_out;
-wire card1_pci_slave2_pin_lut40_out;
-wire card1_pci_slave2_pin_lut41_out;
-wire card1_pci_slave2_pin_lut42_out;
-wire card1_pci_slave2_pin_lut43_out;
-wire card1_pci_slave2_pin_lut44_out;
-wire card1_pci_slave2_pin_lut45_out;
-wire card1_pci_slave2_pin_lut46_out;
-wire card1_pci_slave2_pin_lut47_out;
-wire card1_pci_slave2_pin_lut48_out;
-wire card1_pci_slave2_pin_lut49_out;
-wire card1_pci_slave2_pin_lut50_out;
-wire card1_pci_slave2_pin_lut51_out;
-wire card1_pci_slave2_pin_lut52_out;
-wire card1_pci_slave2_pin_lut53_out;
-wire card1_pci_slave2_pin_lut54_out;
-wire card1_pci_slave2_pin_lut55_out;
-wire card1_pci_slave2_pin_lut56_out;
-wire card1_pci_slave2_pin_lut57_out;
-wire card1_pci_slave2_pin_lut58_out;
-wire card1_pci_slave2_pin_lut59_out;
-wire card1_pci_slave2_pin_lut60_out;
-wire card1_pci_slave2_pin_lut61_out;
-wire card1_pci_slave2_pin_lut62_out;
-wire card1_pci_slave2_pin_lut63_out;
-wire card1_pci_slave2_pin_lut64_out;
 wire [15:0] card1_pci_slave2_pci_config2_bar0_read;
 reg card1_pci_slave2_pci_config2_detected_parity_error;
 reg [7:0] card1_pci_slave2_pci_config2_interrupt_line;
@@ -1142,38 +1142,38 @@ assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
 
 
 
-assign card1_pci_slave2_ad_out_next[31] = card1_pci_slave2_pin_lut64_out;
-assign card1_pci_slave2_ad_out_next[30] = card1_pci_slave2_pin_lut63_out;
-assign card1_pci_slave2_ad_out_next[29] = card1_pci_slave2_pin_lut62_out;
-assign card1_pci_slave2_ad_out_next[28] = card1_pci_slave2_pin_lut61_out;
-assign card1_pci_slave2_ad_out_next[27] = card1_pci_slave2_pin_lut60_out;
-assign card1_pci_slave2_ad_out_next[26] = card1_pci_slave2_pin_lut59_out;
-assign card1_pci_slave2_ad_out_next[25] = card1_pci_slave2_pin_lut58_out;
-assign card1_pci_slave2_ad_out_next[24] = card1_pci_slave2_pin_lut57_out;
-assign card1_pci_slave2_ad_out_next[23] = card1_pci_slave2_pin_lut56_out;
-assign card1_pci_slave2_ad_out_next[22] = card1_pci_slave2_pin_lut55_out;
-assign card1_pci_slave2_ad_out_next[21] = card1_pci_slave2_pin_lut54_out;
-assign card1_pci_slave2_ad_out_next[20] = card1_pci_slave2_pin_lut53_out;
-assign card1_pci_slave2_ad_out_next[19] = card1_pci_slave2_pin_lut52_out;
-assign card1_pci_slave2_ad_out_next[18] = card1_pci_slave2_pin_lut51_out;
-assign card1_pci_slave2_ad_out_next[17] = card1_pci_slave2_pin_lut50_out;
-assign card1_pci_slave2_ad_out_next[16] = card1_pci_slave2_pin_lut49_out;
-assign card1_pci_slave2_ad_out_next[15] = card1_pci_slave2_pin_lut48_out;
-assign card1_pci_slave2_ad_out_next[14] = card1_pci_slave2_pin_lut47_out;
-assign card1_pci_slave2_ad_out_next[13] = card1_pci_slave2_pin_lut46_out;
-assign card1_pci_slave2_ad_out_next[12] = card1_pci_slave2_pin_lut45_out;
-assign card1_pci_slave2_ad_out_next[11] = card1_pci_slave2_pin_lut44_out;
-assign card1_pci_slave2_ad_out_next[10] = card1_pci_slave2_pin_lut43_out;
-assign card1_pci_slave2_ad_out_next[9] = card1_pci_slave2_pin_lut42_out;
-assign card1_pci_slave2_ad_out_next[8] = card1_pci_slave2_pin_lut41_out;
-assign card1_pci_slave2_ad_out_next[7] = card1_pci_slave2_pin_lut40_out;
-assign card1_pci_slave2_ad_out_next[6] = card1_pci_slave2_pin_lut39_out;
-assign card1_pci_slave2_ad_out_next[5] = card1_pci_slave2_pin_lut38_out;
-assign card1_pci_slave2_ad_out_next[4] = card1_pci_slave2_pin_lut37_out;
-assign card1_pci_slave2_ad_out_next[3] = card1_pci_slave2_pin_lut36_out;
-assign card1_pci_slave2_ad_out_next[2] = card1_pci_slave2_pin_lut35_out;
-assign card1_pci_slave2_ad_out_next[1] = card1_pci_slave2_pin_lut34_out;
-assign card1_pci_slave2_ad_out_next[0] = card1_pci_slave2_pin_lut33_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[31] = card1_pci_slave2_pci_boundary2_pin_lut53_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[30] = card1_pci_slave2_pci_boundary2_pin_lut52_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[29] = card1_pci_slave2_pci_boundary2_pin_lut51_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[28] = card1_pci_slave2_pci_boundary2_pin_lut50_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[27] = card1_pci_slave2_pci_boundary2_pin_lut49_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[26] = card1_pci_slave2_pci_boundary2_pin_lut48_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[25] = card1_pci_slave2_pci_boundary2_pin_lut47_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[24] = card1_pci_slave2_pci_boundary2_pin_lut46_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[23] = card1_pci_slave2_pci_boundary2_pin_lut45_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[22] = card1_pci_slave2_pci_boundary2_pin_lut44_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[21] = card1_pci_slave2_pci_boundary2_pin_lut43_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[20] = card1_pci_slave2_pci_boundary2_pin_lut42_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[19] = card1_pci_slave2_pci_boundary2_pin_lut41_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[18] = card1_pci_slave2_pci_boundary2_pin_lut40_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[17] = card1_pci_slave2_pci_boundary2_pin_lut39_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[16] = card1_pci_slave2_pci_boundary2_pin_lut38_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[15] = card1_pci_slave2_pci_boundary2_pin_lut37_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[14] = card1_pci_slave2_pci_boundary2_pin_lut36_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[13] = card1_pci_slave2_pci_boundary2_pin_lut35_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[12] = card1_pci_slave2_pci_boundary2_pin_lut34_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[11] = card1_pci_slave2_pci_boundary2_pin_lut33_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[10] = card1_pci_slave2_pci_boundary2_pin_lut32_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[9] = card1_pci_slave2_pci_boundary2_pin_lut31_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[8] = card1_pci_slave2_pci_boundary2_pin_lut30_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[7] = card1_pci_slave2_pci_boundary2_pin_lut29_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[6] = card1_pci_slave2_pci_boundary2_pin_lut28_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[5] = card1_pci_slave2_pci_boundary2_pin_lut27_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[4] = card1_pci_slave2_pci_boundary2_pin_lut26_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[3] = card1_pci_slave2_pci_boundary2_pin_lut25_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[2] = card1_pci_slave2_pci_boundary2_pin_lut24_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[1] = card1_pci_slave2_pci_boundary2_pin_lut23_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[0] = card1_pci_slave2_pci_boundary2_pin_lut22_out;
 assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
 assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
@@ -1688,11 +1688,11 @@ SB_IO #(.PIN_TYPE(6'b000000)) pad_idsel_0 (
 );
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_register
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_boundary2_control_input_register
     if (reset == 0) begin
-        card1_pci_slave2_frame_q <= 1;
-        card1_pci_slave2_frame_qq <= 1;
         card1_pci_slave2_irdy_q <= 1;
+        card1_pci_slave2_frame_qq <= 1;
+        card1_pci_slave2_frame_q <= 1;
     end
     else begin
         card1_pci_slave2_frame_q <= pci_pads0_input_pad0_from_pin;
@@ -1700,6 +1700,280 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_reg
         card1_pci_slave2_irdy_q <= pci_pads0_input_pad1_from_pin;
     end
 end
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut22_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut22_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut22_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut23_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut23_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut23_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut24_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut24_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut24_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut25_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut25_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut25_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut26_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut26_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut26_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut27_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut27_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut27_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut28_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut28_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut28_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut29_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut29_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut29_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut30_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut30_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut30_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut31_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut31_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut31_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut32_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut32_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut32_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut33_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut33_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut34_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut34_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut35_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut35_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut36_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut36_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut37_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut37_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut38_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut38_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut39_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut39_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut40_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut40_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut41_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut41_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut42_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut42_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut43_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut43_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut44_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut44_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut45_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut45_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut46_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut46_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut47_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut47_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut48_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut48_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut49_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut49_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut50_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut50_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut51_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut51_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut52_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut52_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut53_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut53_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_boundary2_bus_registers
+    if (reset == 0) begin
+        card1_pci_slave2_devsel_q <= 1;
+        pci_pads0_registered_pad4_enable <= 0;
+        card1_pci_slave2_perr_q <= 1;
+        card1_pci_slave2_ad_parity_q <= 0;
+        card1_pci_slave2_trdy_q <= 1;
+        card1_pci_slave2_stop_q <= 1;
+        pci_pads0_registered_pad3_enable <= 0;
+        pci_pads0_tristate_pad0_to_pin <= 1;
+        card1_pci_slave2_ad_out_q <= 0;
+        pci_pads0_registered_pad0_enable <= 0;
+        pci_pads0_tristate_pad1_enable <= 0;
+        pci_pads0_registered_pad2_enable <= 0;
+        pci_pads0_tristate_pad2_enable <= 0;
+        pci_pads0_tristate_pad1_to_pin <= 1;
+        pci_pads0_registered_pad1_enable <= 0;
+        card1_pci_slave2_parity_error_q <= 0;
+        pci_pads0_tristate_pad0_enable <= 0;
+    end
+    else begin
+        card1_pci_slave2_trdy_q <= card1_pci_slave2_trdy_next;
+        card1_pci_slave2_stop_q <= card1_pci_slave2_stop_next;
+        card1_pci_slave2_devsel_q <= card1_pci_slave2_devsel_next;
+        card1_pci_slave2_ad_out_q <= card1_pci_slave2_pci_boundary2_ad_out_next;
+        card1_pci_slave2_perr_q <= card1_pci_slave2_perr_next;
+        card1_pci_slave2_ad_parity_q <= card1_pci_slave2_ad_out_parity;
+        pci_pads0_registered_pad1_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
+        pci_pads0_tristate_pad2_enable <= pci_pads0_registered_pad0_enable;
+        pci_pads0_registered_pad4_enable <= card1_pci_slave2_perr_oe_next;
+        pci_pads0_tristate_pad0_to_pin <= 1'b0;
+        pci_pads0_tristate_pad0_enable <= card1_pci_slave2_serr_oe_next;
+        card1_pci_slave2_parity_error_q <= card1_pci_slave2_parity_error_next;
+        pci_pads0_tristate_pad1_to_pin <= 1'b0;
+        pci_pads0_tristate_pad1_enable <= (card1_irq && (!card1_pci_slave2_interrupt_disable));
+    end
+end
+
+
+
+assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_trdy_next;
+assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_stop_next;
+assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_devsel_next;
+assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_pci_boundary2_ad_out_next;
+assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
 always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_parity2_parity_check
@@ -1888,8 +2162,8 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     first_open = (card1_pci_slave2_first_pending && hold_state && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
     first = (first_open && (!bad));
     prefetch = ((card1_pci_slave2_state == 4'b0110) && card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
-    card1_pci_slave2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
-    card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
+    card1_pci_slave2_pci_requests2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
+    card1_pci_slave2_pci_requests2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
     card1_pci_slave2_first_ready = (card1_pci_slave2_first_pending && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
     card1_pci_slave2_fetch_more = (card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
     card1_pci_slave2_pci_requests2_local_space = (drain || card1_pci_slave2_space_mem);
@@ -1912,12 +2186,12 @@ end
 
 
 assign card1_pci_slave2_draining = (card1_pci_slave2_h_valid || card1_pci_slave2_wq_valid);
-assign card1_pci_slave2_got = ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
-assign card1_pci_slave2_accepted = (card1_pci_slave2_local_we && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_hold_got = (card1_pci_slave2_first_ready && card1_pci_slave2_is_read && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_hold_accepted = (card1_pci_slave2_first_ready && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q) && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci_slave2_is_read || (!card1_pci_slave2_irdy_q)) && card1_pci_slave2_local_retry);
-assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_local_ready);
+assign card1_pci_slave2_got = ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
+assign card1_pci_slave2_accepted = (card1_pci_slave2_pci_requests2_local_we && card1_pci_slave2_pci_requests2_local_ready);
+assign card1_pci_slave2_hold_got = (card1_pci_slave2_first_ready && card1_pci_slave2_is_read && card1_pci_slave2_pci_requests2_local_ready);
+assign card1_pci_slave2_hold_accepted = (card1_pci_slave2_first_ready && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q) && card1_pci_slave2_pci_requests2_local_ready);
+assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci_slave2_is_read || (!card1_pci_slave2_irdy_q)) && card1_pci_slave2_pci_requests2_local_retry);
+assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_pci_requests2_local_ready);
 
 
 always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_rdata, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
@@ -1930,14 +2204,6 @@ always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_
     else begin
         card1_pci_slave2_read_source = card1_pci_slave2_local_rdata;
     end
-end
-
-
-always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_pci_slave2_first_phase, card1_pci_slave2_initial_wait_over, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_latency
-    reg target_waits;
-    target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
-    card1_pci_slave2_waiting = target_waits;
-    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && card1_pci_slave2_initial_wait_over) || ((!card1_pci_slave2_first_phase) && card1_pci_slave2_subsequent_wait_over)));
 end
 
 
@@ -2571,14 +2837,22 @@ assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 `endif
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_phase_registers
+always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_pci_slave2_initial_wait_over, card1_pci_slave2_first_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_state) begin: card1_pci_slave2_pci_transaction2_latency
+    reg target_waits;
+    target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
+    card1_pci_slave2_waiting = target_waits;
+    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && card1_pci_slave2_initial_wait_over) || ((!card1_pci_slave2_first_phase) && card1_pci_slave2_subsequent_wait_over)));
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_phase_registers
     if (reset == 0) begin
-        card1_pci_slave2_before_last <= 0;
         card1_pci_slave2_address_fault <= 0;
         card1_pci_slave2_at_last <= 0;
-        card1_pci_slave2_first_phase <= 0;
-        card1_pci_slave2_state <= 4'b0000;
         card1_pci_slave2_phase_addr <= 0;
+        card1_pci_slave2_first_phase <= 0;
+        card1_pci_slave2_before_last <= 0;
+        card1_pci_slave2_state <= 4'b0000;
     end
     else begin
         card1_pci_slave2_state <= card1_pci_slave2_state_next;
@@ -2600,15 +2874,15 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_phase_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_transaction_kind
     if (reset == 0) begin
         card1_pci_slave2_is_config <= 0;
-        card1_pci_slave2_first_pending <= 0;
-        card1_pci_slave2_space_mem <= 0;
-        card1_pci_slave2_io_byte <= 0;
-        card1_pci_slave2_single <= 0;
-        card1_pci_slave2_is_read <= 0;
         card1_pci_slave2_fetching <= 0;
+        card1_pci_slave2_space_mem <= 0;
+        card1_pci_slave2_first_pending <= 0;
+        card1_pci_slave2_single <= 0;
+        card1_pci_slave2_io_byte <= 0;
+        card1_pci_slave2_is_read <= 0;
     end
     else begin
         if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase)) begin
@@ -2624,10 +2898,10 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
             if ((card1_pci_slave2_got || card1_pci_slave2_accepted)) begin
                 card1_pci_slave2_first_pending <= (card1_pci_slave2_first_pending && card1_pci_slave2_draining);
             end
-            if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready && (card1_pci_slave2_single || (card1_pci_slave2_req_addr == 1023)))) begin
+            if ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_ready && (card1_pci_slave2_single || (card1_pci_slave2_req_addr == 1023)))) begin
                 card1_pci_slave2_fetching <= 1'b0;
             end
-            if ((card1_pci_slave2_local_re && card1_pci_slave2_local_retry && (!card1_pci_slave2_first_pending))) begin
+            if ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_retry && (!card1_pci_slave2_first_pending))) begin
                 card1_pci_slave2_fetching <= 1'b0;
             end
         end
@@ -2635,16 +2909,16 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_request_address
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_request_address
     if (reset == 0) begin
-        card1_pci_slave2_req_addr <= 0;
         card1_pci_slave2_req_addr_stale <= 0;
+        card1_pci_slave2_req_addr <= 0;
     end
     else begin
         if (card1_pci_slave2_claim) begin
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
-        if (((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_ready)) begin
+        if (((card1_pci_slave2_pci_requests2_local_re || card1_pci_slave2_pci_requests2_local_we) && card1_pci_slave2_pci_requests2_local_ready)) begin
             card1_pci_slave2_req_addr <= (card1_pci_slave2_req_addr + 1);
         end
         else if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (!card1_pci_slave2_draining))) begin
@@ -2659,7 +2933,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_request_address
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_latency_count
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_latency_count
     if (reset == 0) begin
         card1_pci_slave2_subsequent_wait_over <= 0;
         card1_pci_slave2_wait_count <= 0;
@@ -2678,280 +2952,6 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_latency_count
         end
     end
 end
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut33_out_lut (.O(card1_pci_slave2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
-`else
-assign card1_pci_slave2_pin_lut33_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut34_out_lut (.O(card1_pci_slave2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
-`else
-assign card1_pci_slave2_pin_lut34_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut35_out_lut (.O(card1_pci_slave2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
-`else
-assign card1_pci_slave2_pin_lut35_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut36_out_lut (.O(card1_pci_slave2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
-`else
-assign card1_pci_slave2_pin_lut36_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut37_out_lut (.O(card1_pci_slave2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
-`else
-assign card1_pci_slave2_pin_lut37_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut38_out_lut (.O(card1_pci_slave2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
-`else
-assign card1_pci_slave2_pin_lut38_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut39_out_lut (.O(card1_pci_slave2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
-`else
-assign card1_pci_slave2_pin_lut39_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut40_out_lut (.O(card1_pci_slave2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
-`else
-assign card1_pci_slave2_pin_lut40_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut41_out_lut (.O(card1_pci_slave2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
-`else
-assign card1_pci_slave2_pin_lut41_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut42_out_lut (.O(card1_pci_slave2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
-`else
-assign card1_pci_slave2_pin_lut42_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut43_out_lut (.O(card1_pci_slave2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
-`else
-assign card1_pci_slave2_pin_lut43_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut44_out_lut (.O(card1_pci_slave2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
-`else
-assign card1_pci_slave2_pin_lut44_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut45_out_lut (.O(card1_pci_slave2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
-`else
-assign card1_pci_slave2_pin_lut45_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut46_out_lut (.O(card1_pci_slave2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
-`else
-assign card1_pci_slave2_pin_lut46_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut47_out_lut (.O(card1_pci_slave2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
-`else
-assign card1_pci_slave2_pin_lut47_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut48_out_lut (.O(card1_pci_slave2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
-`else
-assign card1_pci_slave2_pin_lut48_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut49_out_lut (.O(card1_pci_slave2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
-`else
-assign card1_pci_slave2_pin_lut49_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut50_out_lut (.O(card1_pci_slave2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
-`else
-assign card1_pci_slave2_pin_lut50_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut51_out_lut (.O(card1_pci_slave2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
-`else
-assign card1_pci_slave2_pin_lut51_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut52_out_lut (.O(card1_pci_slave2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
-`else
-assign card1_pci_slave2_pin_lut52_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut53_out_lut (.O(card1_pci_slave2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
-`else
-assign card1_pci_slave2_pin_lut53_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut54_out_lut (.O(card1_pci_slave2_pin_lut54_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
-`else
-assign card1_pci_slave2_pin_lut54_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut55_out_lut (.O(card1_pci_slave2_pin_lut55_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
-`else
-assign card1_pci_slave2_pin_lut55_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut56_out_lut (.O(card1_pci_slave2_pin_lut56_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
-`else
-assign card1_pci_slave2_pin_lut56_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut57_out_lut (.O(card1_pci_slave2_pin_lut57_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
-`else
-assign card1_pci_slave2_pin_lut57_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut58_out_lut (.O(card1_pci_slave2_pin_lut58_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
-`else
-assign card1_pci_slave2_pin_lut58_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut59_out_lut (.O(card1_pci_slave2_pin_lut59_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
-`else
-assign card1_pci_slave2_pin_lut59_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut60_out_lut (.O(card1_pci_slave2_pin_lut60_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
-`else
-assign card1_pci_slave2_pin_lut60_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut61_out_lut (.O(card1_pci_slave2_pin_lut61_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
-`else
-assign card1_pci_slave2_pin_lut61_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut62_out_lut (.O(card1_pci_slave2_pin_lut62_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
-`else
-assign card1_pci_slave2_pin_lut62_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut63_out_lut (.O(card1_pci_slave2_pin_lut63_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
-`else
-assign card1_pci_slave2_pin_lut63_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_slave2_pin_lut64_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
-`else
-assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
-    if (reset == 0) begin
-        pci_pads0_registered_pad1_enable <= 0;
-        card1_pci_slave2_ad_parity_q <= 0;
-        pci_pads0_registered_pad4_enable <= 0;
-        card1_pci_slave2_ad_out_q <= 0;
-        pci_pads0_registered_pad3_enable <= 0;
-        pci_pads0_tristate_pad0_to_pin <= 1;
-        pci_pads0_registered_pad0_enable <= 0;
-        pci_pads0_tristate_pad1_enable <= 0;
-        card1_pci_slave2_perr_q <= 1;
-        pci_pads0_registered_pad2_enable <= 0;
-        pci_pads0_tristate_pad2_enable <= 0;
-        card1_pci_slave2_parity_error_q <= 0;
-        card1_pci_slave2_stop_q <= 1;
-        pci_pads0_tristate_pad1_to_pin <= 1;
-        pci_pads0_tristate_pad0_enable <= 0;
-        card1_pci_slave2_devsel_q <= 1;
-        card1_pci_slave2_trdy_q <= 1;
-    end
-    else begin
-        card1_pci_slave2_trdy_q <= card1_pci_slave2_trdy_next;
-        card1_pci_slave2_stop_q <= card1_pci_slave2_stop_next;
-        card1_pci_slave2_devsel_q <= card1_pci_slave2_devsel_next;
-        card1_pci_slave2_ad_out_q <= card1_pci_slave2_ad_out_next;
-        card1_pci_slave2_perr_q <= card1_pci_slave2_perr_next;
-        card1_pci_slave2_ad_parity_q <= card1_pci_slave2_ad_out_parity;
-        pci_pads0_registered_pad1_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
-        pci_pads0_tristate_pad2_enable <= pci_pads0_registered_pad0_enable;
-        pci_pads0_registered_pad4_enable <= card1_pci_slave2_perr_oe_next;
-        pci_pads0_tristate_pad0_to_pin <= 1'b0;
-        pci_pads0_tristate_pad0_enable <= card1_pci_slave2_serr_oe_next;
-        card1_pci_slave2_parity_error_q <= card1_pci_slave2_parity_error_next;
-        pci_pads0_tristate_pad1_to_pin <= 1'b0;
-        pci_pads0_tristate_pad1_enable <= (card1_irq && (!card1_pci_slave2_interrupt_disable));
-    end
-end
-
-
-
-assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_trdy_next;
-assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_stop_next;
-assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_devsel_next;
-assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_ad_out_next;
-assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_read_buffer
@@ -3021,14 +3021,14 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_writ
             card1_pci_slave2_h_data <= pci_pads0_registered_pad0_from_pin;
             card1_pci_slave2_h_be <= (~pci_pads0_registered_pad5_from_pin);
         end
-        if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready)) begin
+        if ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_ready)) begin
             card1_pci_slave2_spare_data <= card1_pci_slave2_local_rdata;
         end
     end
 end
 
 
-always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_pci_buffers2_posted_count
+always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_pci_requests2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_pci_buffers2_posted_count
     reg [2-1:0] held;
     held = 0;
     if (card1_pci_slave2_h_valid) begin
@@ -3036,14 +3036,14 @@ always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_l
         if (card1_pci_slave2_s_valid) begin
             held = 2;
         end
-        if (card1_pci_slave2_local_ready) begin
+        if (card1_pci_slave2_pci_requests2_local_ready) begin
             held = (held - 1);
         end
         if (card1_pci_slave2_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
+    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_pci_requests2_local_ready))) begin
         held = 1;
     end
     card1_pci_slave2_buffered_next = held;
@@ -6908,7 +6908,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
-always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_pci_requests2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_pci_requests2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (card1_pci_slave2_pci_requests2_local_be[0]) begin
@@ -6924,15 +6924,15 @@ always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, car
         mask[32-1:24] = 255;
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
-    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written) && (!card1_card_core1_regs_fifo2_read_waited));
-    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_pci_requests2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_pci_requests2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written) && (!card1_card_core1_regs_fifo2_read_waited));
+    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_pci_requests2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
 always @(card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_word, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
-    card1_pci_slave2_local_ready = ((card1_pci_slave2_pci_requests2_local_write || card1_pci_slave2_pci_requests2_local_space || card1_card_core1_regs_fifo2_read_waited) && (!card1_card_core1_regs_fifo2_io_written) && (!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)));
-    card1_pci_slave2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
+    card1_pci_slave2_pci_requests2_local_ready = ((card1_pci_slave2_pci_requests2_local_write || card1_pci_slave2_pci_requests2_local_space || card1_card_core1_regs_fifo2_read_waited) && (!card1_card_core1_regs_fifo2_io_written) && (!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)));
+    card1_pci_slave2_pci_requests2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
     if (card1_pci_slave2_pci_requests2_local_space) begin
         card1_pci_slave2_local_rdata = 0;
     end

@@ -20,13 +20,14 @@ from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, INPUT_LIMIT_NEG_X, INP
 from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxisPulses, DdaMove, DdaPlan, DdaPort, DdaRoot,
                                 DdaStep, LinearPort, SetupControl, SetupSequence)
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
-from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBuffers, TargetControlNext, TargetDecode,
-                                TargetParity, TargetRequests, TargetState)
+from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBoundary, TargetBuffers, TargetControlNext,
+                                TargetDecode, TargetParity, TargetRequests, TargetState, TargetTransaction)
 
 __all__ = [
     "card_reset", "axis_suffixes", "named", "PciBus", "LocalBus", "PciPins", "TargetControlNext", "ConfigSpace",
     "TargetState",
-    "TargetDecode", "TargetParity", "TargetBuffers", "TargetRequests", "DdaPort", "DdaPlan", "DdaRoot", "SetupSequence", "SetupControl",
+    "TargetDecode", "TargetParity", "TargetBuffers", "TargetRequests", "TargetTransaction", "TargetBoundary",
+    "DdaPort", "DdaPlan", "DdaRoot", "SetupSequence", "SetupControl",
     "DdaMove", "DdaStep", "LinearPort", "AxisPulses", "TARGET_ZERO", "TARGET_RADIUS", "TARGET_END", "Homing",
     "InputConditioning",
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
