@@ -50,7 +50,9 @@ module card (
 // iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
 // ``io_registers`` (``pci_slave``'s: True when the top's pads hold the PCI
 // registers).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
-// register table needs; BAR1 (memory, the FIFO window) is 4 KiB.
+// register table needs; BAR1 (memory, the FIFO window) is 4 KiB; BAR2
+// (memory) is ``2**REG_BAR_BITS`` bytes: BAR0's registers at their offsets,
+// then the per-axis register blocks.
 // 
 //     PCI --> pci_slave --LocalBus--> card_core --> STEP/DIR
 //                 ^                       |
@@ -268,12 +270,14 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_step_mode;
+reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
 reg card_core0_regs_fifo1_clear_error;
 reg card_core0_regs_fifo1_clear_position;
 reg card_core0_regs_fifo1_clear_stop;
+wire [1:0] card_core0_regs_fifo1_direct_busy;
 reg card_core0_regs_fifo1_direct_clear;
 reg card_core0_regs_fifo1_direct_mode;
 reg card_core0_regs_fifo1_direct_ready;
@@ -298,12 +302,12 @@ wire card_core0_regs_fifo1_out_active;
 reg card_core0_regs_fifo1_out_active_before;
 wire card_core0_regs_fifo1_out_ready;
 wire card_core0_regs_fifo1_outputs_busy;
-reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
 reg card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_read_waited;
 reg [31:0] card_core0_regs_fifo1_read_word;
+reg [11:0] card_core0_regs_fifo1_reg_addr;
 reg card_core0_regs_fifo1_releasing;
 wire [1:0] card_core0_regs_fifo1_requested;
 reg card_core0_regs_fifo1_requested_before;
@@ -330,9 +334,6 @@ reg [15:0] card_core0_regs_fifo1_ramp_step;
 reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_home_cut;
 reg card_core0_regs_fifo1_guard_stop_event;
-reg signed [31:0] card_core0_regs_fifo1_position_y;
-wire card_core0_regs_fifo1_direct_busy_x;
-wire card_core0_regs_fifo1_direct_busy_y;
 wire card_core0_regs_fifo1_dda_advance;
 wire card_core0_regs_fifo1_dda_busy;
 wire card_core0_regs_fifo1_requests_step_x;
@@ -494,15 +495,15 @@ wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word55_honoured;
+wire [5:0] card_core0_regs_fifo1_reg_word55_honoured;
 wire card_core0_regs_fifo1_reg_word55_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word55_shown;
+reg [5:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
 wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word55_written;
+reg [5:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word56_honoured;
@@ -795,6 +796,7 @@ reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse2_pending;
 wire card_core0_regs_fifo1_direct_pulse2_stepping;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
+wire card_core0_regs_fifo1_direct_pulse2_command_busy;
 reg card_core0_regs_fifo1_direct_pulse2_command_load;
 reg card_core0_regs_fifo1_direct_pulse2_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
@@ -808,10 +810,14 @@ reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse3_pending;
 wire card_core0_regs_fifo1_direct_pulse3_stepping;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
+wire card_core0_regs_fifo1_direct_pulse3_command_busy;
 reg card_core0_regs_fifo1_direct_pulse3_command_load;
 reg card_core0_regs_fifo1_direct_pulse3_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
+reg [11:0] card_core0_regs_fifo1_axis_block1_looked_up;
+wire card_core0_regs_fifo1_axis_block1_take;
+reg signed [31:0] card_core0_regs_fifo1_axis_block1__snapshot1_live;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
 wire [1:0] card_core0_regs_fifo1_pulse_out1_free_slot;
 wire [3:0] card_core0_regs_fifo1_pulse_out1_head;
@@ -904,6 +910,7 @@ reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
+wire [1:0] card_core0_regs_fifo1_pulse_source2_pulses_mask;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
@@ -1080,7 +1087,7 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037441;
+assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037442;
 assign card_core0_regs_fifo1_reg_word39_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word39_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
@@ -1107,6 +1114,9 @@ assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
+assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
+assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
+assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
 assign card_core0_regs_fifo1_requested[0] = card_core0_regs_fifo1_requests_step_x;
 assign card_core0_regs_fifo1_pulse_out1_levels[1] = card_core0_regs_fifo1_pulse_out1_axis_y_level;
@@ -1290,7 +1300,7 @@ always @(pci_slave1_bar2, pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_add
     io_hit = (pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_slave1_ad_q[32-1:16] == 0) && (pci_slave1_ad_q[16-1:8] == pci_slave1_bar0[16-1:8]));
     mem_command = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
     mem_hit = (mem_command && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
-    alias_hit = (mem_command && (pci_slave1_ad_q[32-1:8] == pci_slave1_bar2[32-1:8]) && (!mem_hit));
+    alias_hit = (mem_command && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar2[32-1:12]) && (!mem_hit));
     pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     pci_slave1_claim_config = config_hit;
     pci_slave1_claim_io = io_hit;
@@ -1309,7 +1319,7 @@ always @(pci_slave1_cbe_q, pci_slave1_claim_alias, pci_slave1_ad_q) begin: pci_s
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (pci_slave1_claim_alias) begin
-        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
+        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3ff);
     end
     else begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3ff);
@@ -2329,7 +2339,7 @@ always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_respons
             pci_slave1_config_rdata = (pci_slave1_bar1 & 32'hfffff000);
         end
         'h6: begin
-            pci_slave1_config_rdata = (pci_slave1_bar2 & 32'hffffff00);
+            pci_slave1_config_rdata = (pci_slave1_bar2 & 32'hfffff000);
         end
         'hb: begin
             pci_slave1_config_rdata = 32'h11234;
@@ -2438,7 +2448,7 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word39_mine = (card_core0_regs_fifo1_reg_addr == 0);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word39_chain_in_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2460,7 +2470,7 @@ assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 4);
+assign card_core0_regs_fifo1_reg_word40_mine = (card_core0_regs_fifo1_reg_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2515,7 +2525,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 8);
+assign card_core0_regs_fifo1_reg_word41_mine = (card_core0_regs_fifo1_reg_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2567,7 +2577,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 12);
+assign card_core0_regs_fifo1_reg_word42_mine = (card_core0_regs_fifo1_reg_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2589,7 +2599,7 @@ assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word43_mine = (card_core0_regs_fifo1_reg_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2644,7 +2654,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word44_mine = (card_core0_regs_fifo1_reg_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2693,7 +2703,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word45_mine = (card_core0_regs_fifo1_reg_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2756,7 +2766,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word46_mine = (card_core0_regs_fifo1_reg_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -2778,7 +2788,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word47_mine = (card_core0_regs_fifo1_reg_addr == 32);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2800,7 +2810,7 @@ assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word48_mine = (card_core0_regs_fifo1_reg_addr == 36);
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -2822,7 +2832,7 @@ assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word49_mine = (card_core0_regs_fifo1_reg_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -2888,7 +2898,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word50_mine = (card_core0_regs_fifo1_reg_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -2954,7 +2964,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word51_mine = (card_core0_regs_fifo1_reg_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
@@ -3017,7 +3027,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word52_mine = (card_core0_regs_fifo1_reg_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
@@ -3083,7 +3093,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word53_mine = (card_core0_regs_fifo1_reg_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
@@ -3149,7 +3159,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word54_mine = (card_core0_regs_fifo1_reg_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
@@ -3215,7 +3225,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word55_mine = (card_core0_regs_fifo1_reg_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
@@ -3229,7 +3239,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word55_shown};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word55_shown};
 
 
 
@@ -3238,16 +3248,16 @@ assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
     if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[2-1:0];
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[6-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[6-1:0] & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[6-1:0];
 
 
 
@@ -3270,7 +3280,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word56_mine = (card_core0_regs_fifo1_reg_addr == 68);
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3336,7 +3346,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word57_mine = (card_core0_regs_fifo1_reg_addr == 72);
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3402,7 +3412,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word58_mine = (card_core0_regs_fifo1_reg_addr == 76);
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3466,7 +3476,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word59_mine = (card_core0_regs_fifo1_reg_addr == 80);
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3530,7 +3540,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word60_mine = (card_core0_regs_fifo1_reg_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3552,7 +3562,7 @@ assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word61_mine = (card_core0_regs_fifo1_reg_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -3574,7 +3584,7 @@ assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word62_mine = (card_core0_regs_fifo1_reg_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word62_mine, card_core0_regs_fifo1_reg_word62_shown_wide, card_core0_regs_fifo1_reg_word61_chain_out_data) begin: card_core0_regs_fifo1_reg_word62_read_chain
@@ -3596,7 +3606,7 @@ assign card_core0_regs_fifo1_reg_word62_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 96);
+assign card_core0_regs_fifo1_reg_word63_mine = (card_core0_regs_fifo1_reg_addr == 96);
 
 
 always @(card_core0_regs_fifo1_reg_word63_mine, card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word62_chain_out_data) begin: card_core0_regs_fifo1_reg_word63_read_chain
@@ -3654,7 +3664,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 100);
+assign card_core0_regs_fifo1_reg_word64_mine = (card_core0_regs_fifo1_reg_addr == 100);
 
 
 always @(card_core0_regs_fifo1_reg_word64_mine, card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word63_chain_out_data) begin: card_core0_regs_fifo1_reg_word64_read_chain
@@ -3676,7 +3686,7 @@ assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 104);
+assign card_core0_regs_fifo1_reg_word65_mine = (card_core0_regs_fifo1_reg_addr == 104);
 
 
 always @(card_core0_regs_fifo1_reg_word65_mine, card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word64_chain_out_data) begin: card_core0_regs_fifo1_reg_word65_read_chain
@@ -3698,7 +3708,7 @@ assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 108);
+assign card_core0_regs_fifo1_reg_word66_mine = (card_core0_regs_fifo1_reg_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word66_mine, card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word65_chain_out_data) begin: card_core0_regs_fifo1_reg_word66_read_chain
@@ -3753,7 +3763,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 112);
+assign card_core0_regs_fifo1_reg_word67_mine = (card_core0_regs_fifo1_reg_addr == 112);
 
 
 always @(card_core0_regs_fifo1_reg_word67_mine, card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word66_chain_out_data) begin: card_core0_regs_fifo1_reg_word67_read_chain
@@ -3819,7 +3829,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 116);
+assign card_core0_regs_fifo1_reg_word68_mine = (card_core0_regs_fifo1_reg_addr == 116);
 
 
 always @(card_core0_regs_fifo1_reg_word68_mine, card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word67_chain_out_data) begin: card_core0_regs_fifo1_reg_word68_read_chain
@@ -3885,7 +3895,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 120);
+assign card_core0_regs_fifo1_reg_word69_mine = (card_core0_regs_fifo1_reg_addr == 120);
 
 
 always @(card_core0_regs_fifo1_reg_word69_mine, card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word68_chain_out_data) begin: card_core0_regs_fifo1_reg_word69_read_chain
@@ -3945,7 +3955,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 124);
+assign card_core0_regs_fifo1_reg_word70_mine = (card_core0_regs_fifo1_reg_addr == 124);
 
 
 always @(card_core0_regs_fifo1_reg_word70_mine, card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word69_chain_out_data) begin: card_core0_regs_fifo1_reg_word70_read_chain
@@ -3997,7 +4007,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 128);
+assign card_core0_regs_fifo1_reg_word71_mine = (card_core0_regs_fifo1_reg_addr == 128);
 
 
 always @(card_core0_regs_fifo1_reg_word71_mine, card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word70_chain_out_data) begin: card_core0_regs_fifo1_reg_word71_read_chain
@@ -4019,7 +4029,7 @@ assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 132);
+assign card_core0_regs_fifo1_reg_word72_mine = (card_core0_regs_fifo1_reg_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word72_mine, card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word71_chain_out_data) begin: card_core0_regs_fifo1_reg_word72_read_chain
@@ -4085,7 +4095,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 136);
+assign card_core0_regs_fifo1_reg_word73_mine = (card_core0_regs_fifo1_reg_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word73_mine, card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word72_chain_out_data) begin: card_core0_regs_fifo1_reg_word73_read_chain
@@ -4151,7 +4161,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word74_mine = (pci_slave1_pci_requests1_local_addr == 140);
+assign card_core0_regs_fifo1_reg_word74_mine = (card_core0_regs_fifo1_reg_addr == 140);
 
 
 always @(card_core0_regs_fifo1_reg_word74_mine, card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word73_chain_out_data) begin: card_core0_regs_fifo1_reg_word74_read_chain
@@ -4214,7 +4224,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word75_mine = (pci_slave1_pci_requests1_local_addr == 144);
+assign card_core0_regs_fifo1_reg_word75_mine = (card_core0_regs_fifo1_reg_addr == 144);
 
 
 always @(card_core0_regs_fifo1_reg_word75_mine, card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word74_chain_out_data) begin: card_core0_regs_fifo1_reg_word75_read_chain
@@ -4280,7 +4290,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word76_mine = (pci_slave1_pci_requests1_local_addr == 148);
+assign card_core0_regs_fifo1_reg_word76_mine = (card_core0_regs_fifo1_reg_addr == 148);
 
 
 always @(card_core0_regs_fifo1_reg_word76_mine, card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word75_chain_out_data) begin: card_core0_regs_fifo1_reg_word76_read_chain
@@ -4346,7 +4356,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_mine = (pci_slave1_pci_requests1_local_addr == 152);
+assign card_core0_regs_fifo1_reg_word77_mine = (card_core0_regs_fifo1_reg_addr == 152);
 
 
 always @(card_core0_regs_fifo1_reg_word77_mine, card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word76_chain_out_data) begin: card_core0_regs_fifo1_reg_word77_read_chain
@@ -5075,7 +5085,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
+assign card_core0_regs_fifo1_direct_pulse2_command_busy = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
 
 
 
@@ -5168,7 +5178,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
+assign card_core0_regs_fifo1_direct_pulse3_command_busy = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
 
 
 
@@ -5255,6 +5265,70 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
+        end
+    end
+end
+
+
+always @(pci_slave1_pci_requests1_local_addr) begin: card_core0_regs_fifo1_axis_block1_look_up
+    case (pci_slave1_pci_requests1_local_addr[7-1:2])
+        0: card_core0_regs_fifo1_axis_block1_looked_up = 32;
+        1: card_core0_regs_fifo1_axis_block1_looked_up = 68;
+        2: card_core0_regs_fifo1_axis_block1_looked_up = 76;
+        3: card_core0_regs_fifo1_axis_block1_looked_up = 268;
+        4: card_core0_regs_fifo1_axis_block1_looked_up = 272;
+        5: card_core0_regs_fifo1_axis_block1_looked_up = 276;
+        6: card_core0_regs_fifo1_axis_block1_looked_up = 280;
+        7: card_core0_regs_fifo1_axis_block1_looked_up = 284;
+        8: card_core0_regs_fifo1_axis_block1_looked_up = 288;
+        9: card_core0_regs_fifo1_axis_block1_looked_up = 292;
+        10: card_core0_regs_fifo1_axis_block1_looked_up = 296;
+        11: card_core0_regs_fifo1_axis_block1_looked_up = 300;
+        12: card_core0_regs_fifo1_axis_block1_looked_up = 304;
+        13: card_core0_regs_fifo1_axis_block1_looked_up = 308;
+        14: card_core0_regs_fifo1_axis_block1_looked_up = 312;
+        15: card_core0_regs_fifo1_axis_block1_looked_up = 316;
+        16: card_core0_regs_fifo1_axis_block1_looked_up = 36;
+        17: card_core0_regs_fifo1_axis_block1_looked_up = 72;
+        18: card_core0_regs_fifo1_axis_block1_looked_up = 80;
+        19: card_core0_regs_fifo1_axis_block1_looked_up = 332;
+        20: card_core0_regs_fifo1_axis_block1_looked_up = 336;
+        21: card_core0_regs_fifo1_axis_block1_looked_up = 340;
+        22: card_core0_regs_fifo1_axis_block1_looked_up = 344;
+        23: card_core0_regs_fifo1_axis_block1_looked_up = 348;
+        24: card_core0_regs_fifo1_axis_block1_looked_up = 352;
+        25: card_core0_regs_fifo1_axis_block1_looked_up = 356;
+        26: card_core0_regs_fifo1_axis_block1_looked_up = 360;
+        27: card_core0_regs_fifo1_axis_block1_looked_up = 364;
+        28: card_core0_regs_fifo1_axis_block1_looked_up = 368;
+        29: card_core0_regs_fifo1_axis_block1_looked_up = 372;
+        30: card_core0_regs_fifo1_axis_block1_looked_up = 376;
+        default: card_core0_regs_fifo1_axis_block1_looked_up = 380;
+    endcase
+end
+
+
+always @(pci_slave1_pci_requests1_local_addr, card_core0_regs_fifo1_axis_block1_looked_up) begin: card_core0_regs_fifo1_axis_block1_translate
+    if ((pci_slave1_pci_requests1_local_addr[12-1:7] == 2)) begin
+        card_core0_regs_fifo1_reg_addr = card_core0_regs_fifo1_axis_block1_looked_up;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_addr = pci_slave1_pci_requests1_local_addr;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_axis_block1_take = (card_core0_regs_fifo1_io_read && (card_core0_regs_fifo1_reg_addr == 32));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_axis_block1__snapshot1_capture
+    if (reset == 0) begin
+        card_core0_regs_fifo1_pos_y_snapshot <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_axis_block1_take) begin
+            card_core0_regs_fifo1_pos_y_snapshot <= card_core0_regs_fifo1_axis_block1__snapshot1_live;
         end
     end
 end
@@ -5429,20 +5503,20 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_y_count_position
     if (reset == 0) begin
-        card_core0_regs_fifo1_position_y <= 0;
+        card_core0_regs_fifo1_axis_block1__snapshot1_live <= 0;
     end
     else begin
         if (card_core0_regs_fifo1_clear_position) begin
-            card_core0_regs_fifo1_position_y <= 0;
+            card_core0_regs_fifo1_axis_block1__snapshot1_live <= 0;
         end
         else if (card_core0_regs_fifo1_home_zero[1]) begin
-            card_core0_regs_fifo1_position_y <= 0;
+            card_core0_regs_fifo1_axis_block1__snapshot1_live <= 0;
             if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
-                card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_axis_y_delta;
+                card_core0_regs_fifo1_axis_block1__snapshot1_live <= card_core0_regs_fifo1_pulse_out1_axis_y_delta;
             end
         end
         else if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
-            card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_axis_y_delta);
+            card_core0_regs_fifo1_axis_block1__snapshot1_live <= (card_core0_regs_fifo1_axis_block1__snapshot1_live + card_core0_regs_fifo1_pulse_out1_axis_y_delta);
         end
     end
 end
@@ -6130,7 +6204,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
     end
     else begin
         card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
-        card_core0_regs_fifo1_written_addr <= pci_slave1_pci_requests1_local_addr;
+        card_core0_regs_fifo1_written_addr <= card_core0_regs_fifo1_reg_addr;
         card_core0_regs_fifo1_written_data <= pci_slave1_pci_requests1_local_wdata;
         card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
     end
@@ -6188,24 +6262,12 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_befo
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_snapshot
-    if (reset == 0) begin
-        card_core0_regs_fifo1_pos_y_snapshot <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_read && (pci_slave1_pci_requests1_local_addr == 32))) begin
-            card_core0_regs_fifo1_pos_y_snapshot <= card_core0_regs_fifo1_position_y;
-        end
-    end
-end
 
-
-
-assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y);
+assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy != 0);
 assign card_core0_regs_fifo1_outputs_busy = ((card_core0_regs_fifo1_requested != 0) || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
-assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
+assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || (card_core0_regs_fifo1_direct_busy != 0) || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
 
 
 
@@ -6219,7 +6281,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word56_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6232,13 +6294,13 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
         card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word58__store42_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word57_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6251,7 +6313,7 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
         card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word59__store43_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
     end
 end

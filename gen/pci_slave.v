@@ -45,14 +45,15 @@ module pci_slave (
 // 
 // Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
 // ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-// bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
-// memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
+// bits (space 0: the registers, through BAR0, I/O, or BAR2, memory, which
+// holds them at BAR0's offsets and may be larger; space 1: BAR1, memory); ``irq`` level interrupt
 // request, drives INTA# unless Command.Interrupt Disable is set.
 // 
 // Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
 // subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-// bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
-// mem_bar_bits (BAR1 is
+// bytes), reg_bar_bits (BAR2 is 2**reg_bar_bits bytes, BAR0's size at
+// least: BAR0's registers at their offsets, the rest reaching the back end
+// too; a BAR0 under 16 bytes repeats in BAR2's 16), mem_bar_bits (BAR1 is
 // 2**mem_bar_bits bytes); device (how the
 // one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
 // defaults and ranges in ``models/parameters.py``;

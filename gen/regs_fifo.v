@@ -178,12 +178,14 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] step_mode;
+reg signed [31:0] pos_y_snapshot;
 reg [23:0] watchdog_left;
 wire any_busy;
 reg [31:0] byte_mask;
 reg clear_error;
 reg clear_position;
 reg clear_stop;
+wire [1:0] direct_busy;
 reg direct_clear;
 reg direct_mode;
 reg direct_ready;
@@ -208,12 +210,12 @@ wire out_active;
 reg out_active_before;
 wire out_ready;
 wire outputs_busy;
-reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
 reg pulse_clear;
 reg push;
 reg read_waited;
 reg [31:0] read_word;
+reg [15:0] reg_addr;
 reg releasing;
 wire [1:0] requested;
 reg requested_before;
@@ -240,9 +242,6 @@ reg [15:0] ramp_step;
 reg feed_held;
 reg home_cut;
 reg guard_stop_event;
-reg signed [31:0] position_y;
-wire direct_busy_x;
-wire direct_busy_y;
 wire requests_step_x;
 reg direct_request_x;
 wire requests_step_y;
@@ -398,15 +397,15 @@ wire [31:0] reg_word15_shown_wide;
 reg [31:0] reg_word15_written;
 reg [31:0] reg_word15_chain_out_data;
 wire reg_word15_chain_out_clamped;
-wire [1:0] reg_word16_honoured;
+wire [5:0] reg_word16_honoured;
 wire reg_word16_out_of_range;
-reg [1:0] reg_word16_shown;
+reg [5:0] reg_word16_shown;
 reg reg_word16_clamped;
 wire reg_word16_mine;
 wire reg_word16_mine_write;
 wire reg_word16_set_mine;
 wire [31:0] reg_word16_shown_wide;
-reg [1:0] reg_word16_written;
+reg [5:0] reg_word16_written;
 reg [31:0] reg_word16_chain_out_data;
 wire reg_word16_chain_out_clamped;
 reg [15:0] reg_word17_honoured;
@@ -684,6 +683,7 @@ reg [15:0] direct_pulse0_gap_operand;
 reg direct_pulse0_pending;
 wire direct_pulse0_stepping;
 reg direct_pulse0_waiting;
+wire direct_pulse0_command_busy;
 reg direct_pulse0_command_load;
 reg direct_pulse0_command_retarget;
 reg signed [23:0] direct_pulse0_command_count;
@@ -697,10 +697,14 @@ reg [15:0] direct_pulse1_gap_operand;
 reg direct_pulse1_pending;
 wire direct_pulse1_stepping;
 reg direct_pulse1_waiting;
+wire direct_pulse1_command_busy;
 reg direct_pulse1_command_load;
 reg direct_pulse1_command_retarget;
 reg signed [23:0] direct_pulse1_command_count;
 reg [15:0] direct_pulse1_command_period;
+reg [15:0] axis_block0_looked_up;
+wire axis_block0_take;
+reg signed [31:0] axis_block0__snapshot0_live;
 reg [2:0] pulse_out0_count;
 wire [1:0] pulse_out0_free_slot;
 wire [3:0] pulse_out0_head;
@@ -793,6 +797,7 @@ reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
 reg homing0_port_retarget;
 reg homing0_port_ended;
+wire [1:0] pulse_source0_pulses_mask;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
 reg status_words0_error_before;
@@ -800,7 +805,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037441;
+assign reg_word0_shown = 32'd3719037442;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -827,6 +832,9 @@ assign reg_word34_set_mine = 1'd0;
 assign reg_word35_set_mine = 1'd0;
 assign reg_word36_set_mine = 1'd0;
 assign reg_word38_set_mine = 1'd0;
+assign pulse_source0_pulses_mask = 2'd3;
+assign direct_busy[1] = direct_pulse1_command_busy;
+assign direct_busy[0] = direct_pulse0_command_busy;
 assign requested[1] = requests_step_y;
 assign requested[0] = requests_step_x;
 assign pulse_out0_levels[1] = pulse_out0_axis_y_level;
@@ -937,7 +945,7 @@ assign local_room = sync_fifo0_free[(3 - 1)];
 
 
 
-assign reg_word0_mine = (local_addr == 0);
+assign reg_word0_mine = (reg_addr == 0);
 
 
 always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_chain_in_data) begin: reg_word0_read_chain
@@ -959,7 +967,7 @@ assign reg_word0_chain_out_clamped = reg_word0_chain_in_clamped;
 
 
 
-assign reg_word1_mine = (local_addr == 4);
+assign reg_word1_mine = (reg_addr == 4);
 
 
 always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_chain_out_data) begin: reg_word1_read_chain
@@ -1014,7 +1022,7 @@ end
 
 
 
-assign reg_word2_mine = (local_addr == 8);
+assign reg_word2_mine = (reg_addr == 8);
 
 
 always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_chain_out_data) begin: reg_word2_read_chain
@@ -1066,7 +1074,7 @@ end
 
 
 
-assign reg_word3_mine = (local_addr == 12);
+assign reg_word3_mine = (reg_addr == 12);
 
 
 always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_chain_out_data) begin: reg_word3_read_chain
@@ -1088,7 +1096,7 @@ assign reg_word3_chain_out_clamped = reg_word2_chain_out_clamped;
 
 
 
-assign reg_word4_mine = (local_addr == 16);
+assign reg_word4_mine = (reg_addr == 16);
 
 
 always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_chain_out_data) begin: reg_word4_read_chain
@@ -1143,7 +1151,7 @@ end
 
 
 
-assign reg_word5_mine = (local_addr == 20);
+assign reg_word5_mine = (reg_addr == 20);
 
 
 always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_chain_out_data) begin: reg_word5_read_chain
@@ -1192,7 +1200,7 @@ end
 
 
 
-assign reg_word6_mine = (local_addr == 24);
+assign reg_word6_mine = (reg_addr == 24);
 
 
 always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_chain_out_data) begin: reg_word6_read_chain
@@ -1255,7 +1263,7 @@ end
 
 
 
-assign reg_word7_mine = (local_addr == 28);
+assign reg_word7_mine = (reg_addr == 28);
 
 
 always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_chain_out_data) begin: reg_word7_read_chain
@@ -1277,7 +1285,7 @@ assign reg_word7_chain_out_clamped = reg_word6_chain_out_clamped;
 
 
 
-assign reg_word8_mine = (local_addr == 32);
+assign reg_word8_mine = (reg_addr == 32);
 
 
 always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_chain_out_data) begin: reg_word8_read_chain
@@ -1299,7 +1307,7 @@ assign reg_word8_chain_out_clamped = reg_word7_chain_out_clamped;
 
 
 
-assign reg_word9_mine = (local_addr == 36);
+assign reg_word9_mine = (reg_addr == 36);
 
 
 always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_chain_out_data) begin: reg_word9_read_chain
@@ -1321,7 +1329,7 @@ assign reg_word9_chain_out_clamped = reg_word8_chain_out_clamped;
 
 
 
-assign reg_word10_mine = (local_addr == 40);
+assign reg_word10_mine = (reg_addr == 40);
 
 
 always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_chain_out_data) begin: reg_word10_read_chain
@@ -1387,7 +1395,7 @@ end
 
 
 
-assign reg_word11_mine = (local_addr == 44);
+assign reg_word11_mine = (reg_addr == 44);
 
 
 always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_chain_out_data) begin: reg_word11_read_chain
@@ -1453,7 +1461,7 @@ end
 
 
 
-assign reg_word12_mine = (local_addr == 48);
+assign reg_word12_mine = (reg_addr == 48);
 
 
 always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_chain_out_data) begin: reg_word12_read_chain
@@ -1516,7 +1524,7 @@ end
 
 
 
-assign reg_word13_mine = (local_addr == 52);
+assign reg_word13_mine = (reg_addr == 52);
 
 
 always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_chain_out_data) begin: reg_word13_read_chain
@@ -1582,7 +1590,7 @@ end
 
 
 
-assign reg_word14_mine = (local_addr == 56);
+assign reg_word14_mine = (reg_addr == 56);
 
 
 always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_chain_out_data) begin: reg_word14_read_chain
@@ -1648,7 +1656,7 @@ end
 
 
 
-assign reg_word15_mine = (local_addr == 60);
+assign reg_word15_mine = (reg_addr == 60);
 
 
 always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_chain_out_data) begin: reg_word15_read_chain
@@ -1714,7 +1722,7 @@ end
 
 
 
-assign reg_word16_mine = (local_addr == 64);
+assign reg_word16_mine = (reg_addr == 64);
 
 
 always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_chain_out_data) begin: reg_word16_read_chain
@@ -1728,7 +1736,7 @@ end
 
 
 
-assign reg_word16_shown_wide = {30'h0, reg_word16_shown};
+assign reg_word16_shown_wide = {26'h0, reg_word16_shown};
 
 
 
@@ -1737,16 +1745,16 @@ assign reg_word16_mine_write = (written_addr == 64);
 
 always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word16_merge_bytes
     if ((reg_word16_set_mine && (set_index == 0))) begin
-        reg_word16_written = set_value[2-1:0];
+        reg_word16_written = set_value[6-1:0];
     end
     else begin
-        reg_word16_written = ((reg_word16_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
+        reg_word16_written = ((reg_word16_shown_wide[6-1:0] & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
     end
 end
 
 
 
-assign reg_word16_honoured = reg_word16_written[2-1:0];
+assign reg_word16_honoured = reg_word16_written[6-1:0];
 
 
 
@@ -1769,7 +1777,7 @@ end
 
 
 
-assign reg_word17_mine = (local_addr == 68);
+assign reg_word17_mine = (reg_addr == 68);
 
 
 always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_chain_out_data) begin: reg_word17_read_chain
@@ -1835,7 +1843,7 @@ end
 
 
 
-assign reg_word18_mine = (local_addr == 72);
+assign reg_word18_mine = (reg_addr == 72);
 
 
 always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_chain_out_data) begin: reg_word18_read_chain
@@ -1901,7 +1909,7 @@ end
 
 
 
-assign reg_word19_mine = (local_addr == 76);
+assign reg_word19_mine = (reg_addr == 76);
 
 
 always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_chain_out_data) begin: reg_word19_read_chain
@@ -1965,7 +1973,7 @@ end
 
 
 
-assign reg_word20_mine = (local_addr == 80);
+assign reg_word20_mine = (reg_addr == 80);
 
 
 always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_chain_out_data) begin: reg_word20_read_chain
@@ -2029,7 +2037,7 @@ end
 
 
 
-assign reg_word21_mine = (local_addr == 84);
+assign reg_word21_mine = (reg_addr == 84);
 
 
 always @(reg_word21_mine, reg_word21_shown_wide, reg_word20_chain_out_data) begin: reg_word21_read_chain
@@ -2051,7 +2059,7 @@ assign reg_word21_chain_out_clamped = reg_word20_chain_out_clamped;
 
 
 
-assign reg_word22_mine = (local_addr == 88);
+assign reg_word22_mine = (reg_addr == 88);
 
 
 always @(reg_word22_mine, reg_word22_shown_wide, reg_word21_chain_out_data) begin: reg_word22_read_chain
@@ -2073,7 +2081,7 @@ assign reg_word22_chain_out_clamped = reg_word21_chain_out_clamped;
 
 
 
-assign reg_word23_mine = (local_addr == 92);
+assign reg_word23_mine = (reg_addr == 92);
 
 
 always @(reg_word23_mine, reg_word23_shown_wide, reg_word22_chain_out_data) begin: reg_word23_read_chain
@@ -2095,7 +2103,7 @@ assign reg_word23_chain_out_clamped = reg_word22_chain_out_clamped;
 
 
 
-assign reg_word24_mine = (local_addr == 96);
+assign reg_word24_mine = (reg_addr == 96);
 
 
 always @(reg_word24_mine, reg_word24_shown_wide, reg_word23_chain_out_data) begin: reg_word24_read_chain
@@ -2153,7 +2161,7 @@ end
 
 
 
-assign reg_word25_mine = (local_addr == 100);
+assign reg_word25_mine = (reg_addr == 100);
 
 
 always @(reg_word25_mine, reg_word25_shown_wide, reg_word24_chain_out_data) begin: reg_word25_read_chain
@@ -2175,7 +2183,7 @@ assign reg_word25_chain_out_clamped = reg_word24_chain_out_clamped;
 
 
 
-assign reg_word26_mine = (local_addr == 104);
+assign reg_word26_mine = (reg_addr == 104);
 
 
 always @(reg_word26_mine, reg_word26_shown_wide, reg_word25_chain_out_data) begin: reg_word26_read_chain
@@ -2197,7 +2205,7 @@ assign reg_word26_chain_out_clamped = reg_word25_chain_out_clamped;
 
 
 
-assign reg_word27_mine = (local_addr == 108);
+assign reg_word27_mine = (reg_addr == 108);
 
 
 always @(reg_word27_mine, reg_word27_shown_wide, reg_word26_chain_out_data) begin: reg_word27_read_chain
@@ -2252,7 +2260,7 @@ end
 
 
 
-assign reg_word28_mine = (local_addr == 112);
+assign reg_word28_mine = (reg_addr == 112);
 
 
 always @(reg_word28_mine, reg_word28_shown_wide, reg_word27_chain_out_data) begin: reg_word28_read_chain
@@ -2318,7 +2326,7 @@ end
 
 
 
-assign reg_word29_mine = (local_addr == 116);
+assign reg_word29_mine = (reg_addr == 116);
 
 
 always @(reg_word29_mine, reg_word29_shown_wide, reg_word28_chain_out_data) begin: reg_word29_read_chain
@@ -2384,7 +2392,7 @@ end
 
 
 
-assign reg_word30_mine = (local_addr == 120);
+assign reg_word30_mine = (reg_addr == 120);
 
 
 always @(reg_word30_mine, reg_word30_shown_wide, reg_word29_chain_out_data) begin: reg_word30_read_chain
@@ -2444,7 +2452,7 @@ end
 
 
 
-assign reg_word31_mine = (local_addr == 124);
+assign reg_word31_mine = (reg_addr == 124);
 
 
 always @(reg_word31_mine, reg_word31_shown_wide, reg_word30_chain_out_data) begin: reg_word31_read_chain
@@ -2496,7 +2504,7 @@ end
 
 
 
-assign reg_word32_mine = (local_addr == 128);
+assign reg_word32_mine = (reg_addr == 128);
 
 
 always @(reg_word32_mine, reg_word32_shown_wide, reg_word31_chain_out_data) begin: reg_word32_read_chain
@@ -2518,7 +2526,7 @@ assign reg_word32_chain_out_clamped = reg_word31_chain_out_clamped;
 
 
 
-assign reg_word33_mine = (local_addr == 132);
+assign reg_word33_mine = (reg_addr == 132);
 
 
 always @(reg_word33_mine, reg_word33_shown_wide, reg_word32_chain_out_data) begin: reg_word33_read_chain
@@ -2584,7 +2592,7 @@ end
 
 
 
-assign reg_word34_mine = (local_addr == 136);
+assign reg_word34_mine = (reg_addr == 136);
 
 
 always @(reg_word34_mine, reg_word34_shown_wide, reg_word33_chain_out_data) begin: reg_word34_read_chain
@@ -2650,7 +2658,7 @@ end
 
 
 
-assign reg_word35_mine = (local_addr == 140);
+assign reg_word35_mine = (reg_addr == 140);
 
 
 always @(reg_word35_mine, reg_word35_shown_wide, reg_word34_chain_out_data) begin: reg_word35_read_chain
@@ -2713,7 +2721,7 @@ end
 
 
 
-assign reg_word36_mine = (local_addr == 144);
+assign reg_word36_mine = (reg_addr == 144);
 
 
 always @(reg_word36_mine, reg_word36_shown_wide, reg_word35_chain_out_data) begin: reg_word36_read_chain
@@ -2779,7 +2787,7 @@ end
 
 
 
-assign reg_word37_mine = (local_addr == 148);
+assign reg_word37_mine = (reg_addr == 148);
 
 
 always @(reg_word37_mine, reg_word37_shown_wide, reg_word36_chain_out_data) begin: reg_word37_read_chain
@@ -2845,7 +2853,7 @@ end
 
 
 
-assign reg_word38_mine = (local_addr == 152);
+assign reg_word38_mine = (reg_addr == 152);
 
 
 always @(reg_word38_mine, reg_word38_shown_wide, reg_word37_chain_out_data) begin: reg_word38_read_chain
@@ -3574,7 +3582,7 @@ end
 
 
 
-assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
+assign direct_pulse0_command_busy = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
 
 
 
@@ -3667,7 +3675,7 @@ end
 
 
 
-assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
+assign direct_pulse1_command_busy = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
 
 
 
@@ -3754,6 +3762,70 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
                 direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
+        end
+    end
+end
+
+
+always @(local_addr) begin: axis_block0_look_up
+    case (local_addr[7-1:2])
+        0: axis_block0_looked_up = 32;
+        1: axis_block0_looked_up = 68;
+        2: axis_block0_looked_up = 76;
+        3: axis_block0_looked_up = 268;
+        4: axis_block0_looked_up = 272;
+        5: axis_block0_looked_up = 276;
+        6: axis_block0_looked_up = 280;
+        7: axis_block0_looked_up = 284;
+        8: axis_block0_looked_up = 288;
+        9: axis_block0_looked_up = 292;
+        10: axis_block0_looked_up = 296;
+        11: axis_block0_looked_up = 300;
+        12: axis_block0_looked_up = 304;
+        13: axis_block0_looked_up = 308;
+        14: axis_block0_looked_up = 312;
+        15: axis_block0_looked_up = 316;
+        16: axis_block0_looked_up = 36;
+        17: axis_block0_looked_up = 72;
+        18: axis_block0_looked_up = 80;
+        19: axis_block0_looked_up = 332;
+        20: axis_block0_looked_up = 336;
+        21: axis_block0_looked_up = 340;
+        22: axis_block0_looked_up = 344;
+        23: axis_block0_looked_up = 348;
+        24: axis_block0_looked_up = 352;
+        25: axis_block0_looked_up = 356;
+        26: axis_block0_looked_up = 360;
+        27: axis_block0_looked_up = 364;
+        28: axis_block0_looked_up = 368;
+        29: axis_block0_looked_up = 372;
+        30: axis_block0_looked_up = 376;
+        default: axis_block0_looked_up = 380;
+    endcase
+end
+
+
+always @(local_addr, axis_block0_looked_up) begin: axis_block0_translate
+    if ((local_addr[16-1:7] == 2)) begin
+        reg_addr = axis_block0_looked_up;
+    end
+    else begin
+        reg_addr = local_addr;
+    end
+end
+
+
+
+assign axis_block0_take = (io_read && (reg_addr == 32));
+
+
+always @(posedge clock, negedge reset) begin: axis_block0__snapshot0_capture
+    if (reset == 0) begin
+        pos_y_snapshot <= 0;
+    end
+    else begin
+        if (axis_block0_take) begin
+            pos_y_snapshot <= axis_block0__snapshot0_live;
         end
     end
 end
@@ -3928,20 +4000,20 @@ end
 
 always @(posedge clock, negedge reset) begin: pulse_out0_axis_y_count_position
     if (reset == 0) begin
-        position_y <= 0;
+        axis_block0__snapshot0_live <= 0;
     end
     else begin
         if (clear_position) begin
-            position_y <= 0;
+            axis_block0__snapshot0_live <= 0;
         end
         else if (home_zero[1]) begin
-            position_y <= 0;
+            axis_block0__snapshot0_live <= 0;
             if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
-                position_y <= pulse_out0_axis_y_delta;
+                axis_block0__snapshot0_live <= pulse_out0_axis_y_delta;
             end
         end
         else if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
-            position_y <= (position_y + pulse_out0_axis_y_delta);
+            axis_block0__snapshot0_live <= (axis_block0__snapshot0_live + pulse_out0_axis_y_delta);
         end
     end
 end
@@ -4629,7 +4701,7 @@ always @(posedge clock, negedge reset) begin: write_stage
     end
     else begin
         io_written <= io_write;
-        written_addr <= local_addr;
+        written_addr <= reg_addr;
         written_data <= local_wdata;
         written_mask <= byte_mask;
     end
@@ -4687,24 +4759,12 @@ always @(posedge clock, negedge reset) begin: outputs_before
 end
 
 
-always @(posedge clock, negedge reset) begin: snapshot
-    if (reset == 0) begin
-        pos_y_snapshot <= 0;
-    end
-    else begin
-        if ((io_read && (local_addr == 32))) begin
-            pos_y_snapshot <= position_y;
-        end
-    end
-end
 
-
-
-assign pulse_busy = (direct_busy_x || direct_busy_y);
+assign pulse_busy = (direct_busy != 0);
 assign outputs_busy = ((requested != 0) || requested_before || out_active_before);
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
-assign any_busy = (seq_busy || direct_busy_x || direct_busy_y || out_active || dda_busy || home_busy);
+assign any_busy = (seq_busy || (direct_busy != 0) || out_active || dda_busy || home_busy);
 
 
 
@@ -4718,7 +4778,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, seq_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: _axis_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 0));
     if (home_busy) begin
@@ -4731,13 +4791,13 @@ always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_wor
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
-        direct_pulse0_command_load = seq_load;
+        direct_pulse0_command_load = (seq_load && pulse_source0_pulses_mask[0]);
         direct_pulse0_command_count = sequencer0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, seq_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: _axis_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 1));
     if (home_busy) begin
@@ -4750,7 +4810,7 @@ always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_wor
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
-        direct_pulse1_command_load = seq_load;
+        direct_pulse1_command_load = (seq_load && pulse_source0_pulses_mask[1]);
         direct_pulse1_command_count = sequencer0_pulses_count_y;
     end
 end

@@ -293,12 +293,14 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_step_mode;
+reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 reg card1_card_core1_regs_fifo2_clear_error;
 reg card1_card_core1_regs_fifo2_clear_position;
 reg card1_card_core1_regs_fifo2_clear_stop;
+wire [1:0] card1_card_core1_regs_fifo2_direct_busy;
 reg card1_card_core1_regs_fifo2_direct_clear;
 reg card1_card_core1_regs_fifo2_direct_mode;
 reg card1_card_core1_regs_fifo2_direct_ready;
@@ -323,12 +325,12 @@ wire card1_card_core1_regs_fifo2_out_active;
 reg card1_card_core1_regs_fifo2_out_active_before;
 wire card1_card_core1_regs_fifo2_out_ready;
 wire card1_card_core1_regs_fifo2_outputs_busy;
-reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
 reg card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_read_waited;
 reg [31:0] card1_card_core1_regs_fifo2_read_word;
+reg [11:0] card1_card_core1_regs_fifo2_reg_addr;
 reg card1_card_core1_regs_fifo2_releasing;
 wire [1:0] card1_card_core1_regs_fifo2_requested;
 reg card1_card_core1_regs_fifo2_requested_before;
@@ -355,9 +357,6 @@ reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
 reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_home_cut;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
-reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
-wire card1_card_core1_regs_fifo2_direct_busy_x;
-wire card1_card_core1_regs_fifo2_direct_busy_y;
 wire card1_card_core1_regs_fifo2_dda_advance;
 wire card1_card_core1_regs_fifo2_dda_busy;
 wire card1_card_core1_regs_fifo2_requests_step_x;
@@ -519,15 +518,15 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
+wire [5:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
 wire card1_card_core1_regs_fifo2_reg_word94_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word94_shown;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word94_shown;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word94_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
@@ -820,6 +819,7 @@ reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
 wire card1_card_core1_regs_fifo2_direct_pulse4_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
+wire card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
@@ -833,10 +833,14 @@ reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
 wire card1_card_core1_regs_fifo2_direct_pulse5_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
+wire card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
+reg [11:0] card1_card_core1_regs_fifo2_axis_block2_looked_up;
+wire card1_card_core1_regs_fifo2_axis_block2_take;
+reg signed [31:0] card1_card_core1_regs_fifo2_axis_block2__snapshot2_live;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_free_slot;
 wire [3:0] card1_card_core1_regs_fifo2_pulse_out2_head;
@@ -929,6 +933,7 @@ reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_source4_pulses_mask;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
@@ -1105,7 +1110,7 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037441;
+assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037442;
 assign card1_card_core1_regs_fifo2_reg_word78_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'd0;
@@ -1132,6 +1137,7 @@ assign card1_card_core1_regs_fifo2_reg_word112_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word113_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word114_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_pulse_source4_pulses_mask = 2'd3;
 
 
 
@@ -1174,6 +1180,8 @@ assign card1_pci_slave2_pci_boundary2_ad_out_next[3] = card1_pci_slave2_pci_boun
 assign card1_pci_slave2_pci_boundary2_ad_out_next[2] = card1_pci_slave2_pci_boundary2_pin_lut24_out;
 assign card1_pci_slave2_pci_boundary2_ad_out_next[1] = card1_pci_slave2_pci_boundary2_pin_lut23_out;
 assign card1_pci_slave2_pci_boundary2_ad_out_next[0] = card1_pci_slave2_pci_boundary2_pin_lut22_out;
+assign card1_card_core1_regs_fifo2_direct_busy[1] = card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
+assign card1_card_core1_regs_fifo2_direct_busy[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
 assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
@@ -2063,7 +2071,7 @@ always @(card1_pci_slave2_bar2, card1_pci_slave2_bar1, card1_pci_slave2_mem_enab
     io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:8] == card1_pci_slave2_bar0[16-1:8]));
     mem_command = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
     mem_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
-    alias_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:8] == card1_pci_slave2_bar2[32-1:8]) && (!mem_hit));
+    alias_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar2[32-1:12]) && (!mem_hit));
     card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     card1_pci_slave2_claim_config = config_hit;
     card1_pci_slave2_claim_io = io_hit;
@@ -2082,7 +2090,7 @@ always @(pci_pads0_registered_pad5_from_pin, card1_pci_slave2_claim_alias, pci_p
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else if (card1_pci_slave2_claim_alias) begin
-        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
     end
     else begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
@@ -3162,7 +3170,7 @@ always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_pa
             card1_pci_slave2_config_rdata = (card1_pci_slave2_bar1 & 32'hfffff000);
         end
         'h6: begin
-            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar2 & 32'hffffff00);
+            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar2 & 32'hfffff000);
         end
         'hb: begin
             card1_pci_slave2_config_rdata = 32'h11234;
@@ -3271,7 +3279,7 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_card_core1_regs_fifo2_reg_addr == 0);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
@@ -3293,7 +3301,7 @@ assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
+assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_card_core1_regs_fifo2_reg_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
@@ -3348,7 +3356,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
+assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_card_core1_regs_fifo2_reg_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
@@ -3400,7 +3408,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
+assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_card_core1_regs_fifo2_reg_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
@@ -3422,7 +3430,7 @@ assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_card_core1_regs_fifo2_reg_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
@@ -3477,7 +3485,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_card_core1_regs_fifo2_reg_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
@@ -3526,7 +3534,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_card_core1_regs_fifo2_reg_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
@@ -3589,7 +3597,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_card_core1_regs_fifo2_reg_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
@@ -3611,7 +3619,7 @@ assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_card_core1_regs_fifo2_reg_addr == 32);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -3633,7 +3641,7 @@ assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_card_core1_regs_fifo2_reg_addr == 36);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -3655,7 +3663,7 @@ assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_card_core1_regs_fifo2_reg_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
@@ -3721,7 +3729,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_card_core1_regs_fifo2_reg_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
@@ -3787,7 +3795,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_card_core1_regs_fifo2_reg_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3850,7 +3858,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_card_core1_regs_fifo2_reg_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -3916,7 +3924,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_card_core1_regs_fifo2_reg_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
@@ -3982,7 +3990,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_card_core1_regs_fifo2_reg_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word93_mine, card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_reg_word92_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word93_read_chain
@@ -4048,7 +4056,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_card_core1_regs_fifo2_reg_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word94_mine, card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word93_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word94_read_chain
@@ -4062,7 +4070,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
+assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
 
 
 
@@ -4071,16 +4079,16 @@ assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_reg
 
 always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word94_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[6-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[6-1:0] & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[6-1:0];
 
 
 
@@ -4103,7 +4111,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_card_core1_regs_fifo2_reg_addr == 68);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
@@ -4169,7 +4177,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_card_core1_regs_fifo2_reg_addr == 72);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
@@ -4235,7 +4243,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_card_core1_regs_fifo2_reg_addr == 76);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
@@ -4299,7 +4307,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_card_core1_regs_fifo2_reg_addr == 80);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
@@ -4363,7 +4371,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_card_core1_regs_fifo2_reg_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4385,7 +4393,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_card_core1_regs_fifo2_reg_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4407,7 +4415,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_card_core1_regs_fifo2_reg_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4429,7 +4437,7 @@ assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_card_core1_regs_fifo2_reg_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4487,7 +4495,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_card_core1_regs_fifo2_reg_addr == 100);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word103_mine, card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word102_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word103_read_chain
@@ -4509,7 +4517,7 @@ assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_card_core1_regs_fifo2_reg_addr == 104);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word104_mine, card1_card_core1_regs_fifo2_reg_word104_shown_wide, card1_card_core1_regs_fifo2_reg_word103_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word104_read_chain
@@ -4531,7 +4539,7 @@ assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_card_core1_regs_fifo2_reg_addr == 108);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word105_mine, card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word104_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word105_read_chain
@@ -4586,7 +4594,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_card_core1_regs_fifo2_reg_addr == 112);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word106_mine, card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word105_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word106_read_chain
@@ -4652,7 +4660,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_card_core1_regs_fifo2_reg_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_mine, card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word106_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word107_read_chain
@@ -4718,7 +4726,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_card_core1_regs_fifo2_reg_addr == 120);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word108_mine, card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word107_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word108_read_chain
@@ -4778,7 +4786,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_card_core1_regs_fifo2_reg_addr == 124);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word109_mine, card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word108_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word109_read_chain
@@ -4830,7 +4838,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
+assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_card_core1_regs_fifo2_reg_addr == 128);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word110_mine, card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word109_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word110_read_chain
@@ -4852,7 +4860,7 @@ assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_card_core1_regs_fifo2_reg_addr == 132);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word111_mine, card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word110_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word111_read_chain
@@ -4918,7 +4926,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_card_core1_regs_fifo2_reg_addr == 136);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word112_mine, card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word111_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word112_read_chain
@@ -4984,7 +4992,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_card_core1_regs_fifo2_reg_addr == 140);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word113_mine, card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word112_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word113_read_chain
@@ -5047,7 +5055,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_card_core1_regs_fifo2_reg_addr == 144);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word114_mine, card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word113_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word114_read_chain
@@ -5113,7 +5121,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_pci_slave2_pci_requests2_local_addr == 148);
+assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_card_core1_regs_fifo2_reg_addr == 148);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word115_mine, card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word114_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word115_read_chain
@@ -5179,7 +5187,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_pci_slave2_pci_requests2_local_addr == 152);
+assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_card_core1_regs_fifo2_reg_addr == 152);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word116_mine, card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word115_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word116_read_chain
@@ -5908,7 +5916,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
+assign card1_card_core1_regs_fifo2_direct_pulse4_command_busy = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
 
 
 
@@ -6001,7 +6009,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
+assign card1_card_core1_regs_fifo2_direct_pulse5_command_busy = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
 
 
 
@@ -6088,6 +6096,70 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
+        end
+    end
+end
+
+
+always @(card1_pci_slave2_pci_requests2_local_addr) begin: card1_card_core1_regs_fifo2_axis_block2_look_up
+    case (card1_pci_slave2_pci_requests2_local_addr[7-1:2])
+        0: card1_card_core1_regs_fifo2_axis_block2_looked_up = 32;
+        1: card1_card_core1_regs_fifo2_axis_block2_looked_up = 68;
+        2: card1_card_core1_regs_fifo2_axis_block2_looked_up = 76;
+        3: card1_card_core1_regs_fifo2_axis_block2_looked_up = 268;
+        4: card1_card_core1_regs_fifo2_axis_block2_looked_up = 272;
+        5: card1_card_core1_regs_fifo2_axis_block2_looked_up = 276;
+        6: card1_card_core1_regs_fifo2_axis_block2_looked_up = 280;
+        7: card1_card_core1_regs_fifo2_axis_block2_looked_up = 284;
+        8: card1_card_core1_regs_fifo2_axis_block2_looked_up = 288;
+        9: card1_card_core1_regs_fifo2_axis_block2_looked_up = 292;
+        10: card1_card_core1_regs_fifo2_axis_block2_looked_up = 296;
+        11: card1_card_core1_regs_fifo2_axis_block2_looked_up = 300;
+        12: card1_card_core1_regs_fifo2_axis_block2_looked_up = 304;
+        13: card1_card_core1_regs_fifo2_axis_block2_looked_up = 308;
+        14: card1_card_core1_regs_fifo2_axis_block2_looked_up = 312;
+        15: card1_card_core1_regs_fifo2_axis_block2_looked_up = 316;
+        16: card1_card_core1_regs_fifo2_axis_block2_looked_up = 36;
+        17: card1_card_core1_regs_fifo2_axis_block2_looked_up = 72;
+        18: card1_card_core1_regs_fifo2_axis_block2_looked_up = 80;
+        19: card1_card_core1_regs_fifo2_axis_block2_looked_up = 332;
+        20: card1_card_core1_regs_fifo2_axis_block2_looked_up = 336;
+        21: card1_card_core1_regs_fifo2_axis_block2_looked_up = 340;
+        22: card1_card_core1_regs_fifo2_axis_block2_looked_up = 344;
+        23: card1_card_core1_regs_fifo2_axis_block2_looked_up = 348;
+        24: card1_card_core1_regs_fifo2_axis_block2_looked_up = 352;
+        25: card1_card_core1_regs_fifo2_axis_block2_looked_up = 356;
+        26: card1_card_core1_regs_fifo2_axis_block2_looked_up = 360;
+        27: card1_card_core1_regs_fifo2_axis_block2_looked_up = 364;
+        28: card1_card_core1_regs_fifo2_axis_block2_looked_up = 368;
+        29: card1_card_core1_regs_fifo2_axis_block2_looked_up = 372;
+        30: card1_card_core1_regs_fifo2_axis_block2_looked_up = 376;
+        default: card1_card_core1_regs_fifo2_axis_block2_looked_up = 380;
+    endcase
+end
+
+
+always @(card1_pci_slave2_pci_requests2_local_addr, card1_card_core1_regs_fifo2_axis_block2_looked_up) begin: card1_card_core1_regs_fifo2_axis_block2_translate
+    if ((card1_pci_slave2_pci_requests2_local_addr[12-1:7] == 2)) begin
+        card1_card_core1_regs_fifo2_reg_addr = card1_card_core1_regs_fifo2_axis_block2_looked_up;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_addr = card1_pci_slave2_pci_requests2_local_addr;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_axis_block2_take = (card1_card_core1_regs_fifo2_io_read && (card1_card_core1_regs_fifo2_reg_addr == 32));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_axis_block2__snapshot2_capture
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_axis_block2_take) begin
+            card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_axis_block2__snapshot2_live;
         end
     end
 end
@@ -6262,20 +6334,20 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_count_position
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_position_y <= 0;
+        card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= 0;
     end
     else begin
         if (card1_card_core1_regs_fifo2_clear_position) begin
-            card1_card_core1_regs_fifo2_position_y <= 0;
+            card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= 0;
         end
         else if (card1_card_core1_regs_fifo2_home_zero[1]) begin
-            card1_card_core1_regs_fifo2_position_y <= 0;
+            card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= 0;
             if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
-                card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta;
+                card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta;
             end
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
-            card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta);
+            card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= (card1_card_core1_regs_fifo2_axis_block2__snapshot2_live + card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta);
         end
     end
 end
@@ -6963,7 +7035,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
     end
     else begin
         card1_card_core1_regs_fifo2_io_written <= card1_card_core1_regs_fifo2_io_write;
-        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_pci_requests2_local_addr;
+        card1_card_core1_regs_fifo2_written_addr <= card1_card_core1_regs_fifo2_reg_addr;
         card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_pci_requests2_local_wdata;
         card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask;
     end
@@ -7021,24 +7093,12 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_output
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_snapshot
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_pci_requests2_local_addr == 32))) begin
-            card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_position_y;
-        end
-    end
-end
 
-
-
-assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y);
+assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy != 0);
 assign card1_card_core1_regs_fifo2_outputs_busy = ((card1_card_core1_regs_fifo2_requested != 0) || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
-assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
+assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || (card1_card_core1_regs_fifo2_direct_busy != 0) || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
 
 
 
@@ -7052,7 +7112,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word95_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7065,13 +7125,13 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word97__store70_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word96_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7084,7 +7144,7 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word98__store71_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
     end
 end

@@ -44,11 +44,11 @@ from rtl.pci.pci_transaction import pci_transaction
 from rtl.pci.pin_lut import pin_lut
 
 
-def pci_slave_ports(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits):
+def pci_slave_ports(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits, reg_bar_bits=Build.reg_bar_bits):
     """Fresh ports of ``pci_slave`` for BARs of these sizes (conversion and
     benches): ``local`` has ``local_addr_width`` address bits."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(),
-                local=LocalBus(local_addr_width(io_bar_bits, mem_bar_bits)), irq=Signal(bool(0)))
+                local=LocalBus(local_addr_width(io_bar_bits, mem_bar_bits, reg_bar_bits)), irq=Signal(bool(0)))
 
 
 # ``build``: a ``Build`` (``models/parameters.py``); the parameters the docstring
@@ -59,14 +59,15 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
 
     Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
     ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-    bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
-    memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
+    bits (space 0: the registers, through BAR0, I/O, or BAR2, memory, which
+    holds them at BAR0's offsets and may be larger; space 1: BAR1, memory); ``irq`` level interrupt
     request, drives INTA# unless Command.Interrupt Disable is set.
 
     Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
     subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-    bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
-    mem_bar_bits (BAR1 is
+    bytes), reg_bar_bits (BAR2 is 2**reg_bar_bits bytes, BAR0's size at
+    least: BAR0's registers at their offsets, the rest reaching the back end
+    too; a BAR0 under 16 bytes repeats in BAR2's 16), mem_bar_bits (BAR1 is
     2**mem_bar_bits bytes); device (how the
     one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
     defaults and ranges in ``models/parameters.py``;
@@ -103,8 +104,8 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
         room    ~~~~~~~~~~~~~~~~~~~~~~~~~~~~\\_______ ...
     """
     io_registers = check_io_registers(io_registers)
-    io_bits, mem_bits, device = build.io_bar_bits, build.mem_bar_bits, build.device
-    width = local_addr_width(io_bits, mem_bits) - 2   # dword address counters
+    io_bits, mem_bits, reg_bits, device = build.io_bar_bits, build.mem_bar_bits, build.reg_bar_bits, build.device
+    width = local_addr_width(io_bits, mem_bits, reg_bits) - 2   # dword address counters
     if len(local.addr) != width + 2:
         raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
 
@@ -216,7 +217,7 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
                            address_phase=address_phase, claim=claim, claim_config=claim_config,
                            claim_io=claim_io, claim_alias=claim_alias, read_command=read_command,
                            start_addr=start_addr)
-    decode_unit = pci_decode(decoder, io_bits=io_bits, mem_bits=mem_bits)
+    decode_unit = pci_decode(decoder, io_bits=io_bits, mem_bits=mem_bits, reg_bits=reg_bits)
 
     # A data phase completes when the IRDY# pin and TRDY# (trdy_q) are both
     # low; each register it changes has its next value in one LUT after the pin.
