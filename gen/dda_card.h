@@ -398,8 +398,8 @@
 #define DDA_STOP_LIMIT 3u /* STOP_REASON.REASON */
 
 /* The simulated card's socket protocol (sim/card/card_server.py) */
-#define DDA_SIM_READ 1u /* a = BAR0 offset; answer: the register */
-#define DDA_SIM_WRITE 2u /* a = BAR0 offset, b = value; answer: 0 */
+#define DDA_SIM_READ 1u /* a = register offset: BAR0's, or beyond it BAR2's per-axis blocks; answer: the register */
+#define DDA_SIM_WRITE 2u /* a = register offset as READ's, b = value; answer: 0 */
 #define DDA_SIM_FIFO 3u /* a = word count, then the words (one burst into BAR1); answer: 0 */
 #define DDA_SIM_ADVANCE 4u /* a = card clocks; answer: card clocks since the server opened the card, low 32 bits */
 #define DDA_SIM_REQUEST_WORDS 3u
