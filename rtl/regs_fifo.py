@@ -34,8 +34,10 @@ def _bit(name, field_name):
 def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=Build()):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
-    Ports: ``local`` (the target's back end; I/O BAR = the registers of
-    ``models/registers.py``, memory BAR = the FIFO: every data phase with a byte
+    Ports: ``local`` (the target's back end; space 0 = the registers of
+    ``models/registers.py``: BAR0's at their offsets, beyond them BAR2's
+    per-axis blocks, X's and Y's turned into BAR0's offsets by
+    ``axis_block``; space 1 = the FIFO: every data phase with a byte
     enabled pushes one word; ``local.room`` is high while the FIFO has
     three free places, the promise the target needs before it acknowledges
     a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -47,7 +49,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     outputs and resets the DDA; the FIFO keeps its words until
     COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
     INTA#: INT_STATUS & INT_ENABLE, from ``status_words``, which also
-    assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
+    assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y;
+    ``axis_block`` holds the positions a POS_X read captures); every axis
+    has its direct pulses (``pulse_source``, ``direct_pulse``);
     ``core_clear`` (one registered clock on
     COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
     Parameters (``models/parameters.py``): ``fifo_depth`` (words, a power of
@@ -62,7 +66,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     later, and a request in that clock waits one clock (PCI never asks that
     soon); an I/O read waits one clock: the registers' read chain ends in a
     register (``read_word``), so the PCI target's AD register is fed from a
-    flip-flop, and a read's side effect (POS_X holds POS_Y) happens once, at
+    flip-flop, and a read's side effect (POS_X captures the other axes' POS) happens once, at
     the edge that takes the word; ``room`` is the FIFO's own flag (three
     places free or more):
         clock    _/~\\_/~\\_/~\\_/~\\_
