@@ -307,7 +307,6 @@ reg card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
 reg card_core0_regs_fifo1_read_waited;
 reg [31:0] card_core0_regs_fifo1_read_word;
-reg [11:0] card_core0_regs_fifo1_reg_addr;
 reg card_core0_regs_fifo1_releasing;
 wire [1:0] card_core0_regs_fifo1_requested;
 reg card_core0_regs_fifo1_requested_before;
@@ -815,7 +814,6 @@ reg card_core0_regs_fifo1_direct_pulse3_command_load;
 reg card_core0_regs_fifo1_direct_pulse3_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
-reg [11:0] card_core0_regs_fifo1_axis_block1_looked_up;
 wire card_core0_regs_fifo1_axis_block1_take;
 reg signed [31:0] card_core0_regs_fifo1_axis_block1__snapshot1_live;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
@@ -2448,7 +2446,7 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (card_core0_regs_fifo1_reg_addr == 0);
+assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
 always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word39_chain_in_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
@@ -2470,7 +2468,7 @@ assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word40_mine = (card_core0_regs_fifo1_reg_addr == 4);
+assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
@@ -2525,7 +2523,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine = (card_core0_regs_fifo1_reg_addr == 8);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
@@ -2577,7 +2575,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_mine = (card_core0_regs_fifo1_reg_addr == 12);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2599,7 +2597,7 @@ assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (card_core0_regs_fifo1_reg_addr == 16);
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2654,7 +2652,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (card_core0_regs_fifo1_reg_addr == 20);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2703,7 +2701,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine = (card_core0_regs_fifo1_reg_addr == 24);
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2766,7 +2764,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (card_core0_regs_fifo1_reg_addr == 28);
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -2788,7 +2786,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (card_core0_regs_fifo1_reg_addr == 32);
+assign card_core0_regs_fifo1_reg_word47_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256));
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2810,7 +2808,7 @@ assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine = (card_core0_regs_fifo1_reg_addr == 36);
+assign card_core0_regs_fifo1_reg_word48_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (pci_slave1_pci_requests1_local_addr == 320));
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -2832,7 +2830,7 @@ assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine = (card_core0_regs_fifo1_reg_addr == 40);
+assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -2898,7 +2896,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = (card_core0_regs_fifo1_reg_addr == 44);
+assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -2964,7 +2962,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine = (card_core0_regs_fifo1_reg_addr == 48);
+assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
@@ -3027,7 +3025,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine = (card_core0_regs_fifo1_reg_addr == 52);
+assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
@@ -3093,7 +3091,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine = (card_core0_regs_fifo1_reg_addr == 56);
+assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
@@ -3159,7 +3157,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine = (card_core0_regs_fifo1_reg_addr == 60);
+assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
@@ -3225,7 +3223,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine = (card_core0_regs_fifo1_reg_addr == 64);
+assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
@@ -3280,7 +3278,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = (card_core0_regs_fifo1_reg_addr == 68);
+assign card_core0_regs_fifo1_reg_word56_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (pci_slave1_pci_requests1_local_addr == 260));
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3298,7 +3296,7 @@ assign card_core0_regs_fifo1_reg_word56_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word56_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
 
 
 always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
@@ -3346,7 +3344,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = (card_core0_regs_fifo1_reg_addr == 72);
+assign card_core0_regs_fifo1_reg_word57_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (pci_slave1_pci_requests1_local_addr == 324));
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3364,7 +3362,7 @@ assign card_core0_regs_fifo1_reg_word57_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word57_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
 
 
 always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
@@ -3412,7 +3410,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = (card_core0_regs_fifo1_reg_addr == 76);
+assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (pci_slave1_pci_requests1_local_addr == 264));
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3430,7 +3428,7 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_written_addr == 264));
 
 
 
@@ -3476,7 +3474,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = (card_core0_regs_fifo1_reg_addr == 80);
+assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (pci_slave1_pci_requests1_local_addr == 328));
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3494,7 +3492,7 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_written_addr == 328));
 
 
 
@@ -3540,7 +3538,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = (card_core0_regs_fifo1_reg_addr == 84);
+assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3562,7 +3560,7 @@ assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = (card_core0_regs_fifo1_reg_addr == 88);
+assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -3584,7 +3582,7 @@ assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word62_mine = (card_core0_regs_fifo1_reg_addr == 92);
+assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word62_mine, card_core0_regs_fifo1_reg_word62_shown_wide, card_core0_regs_fifo1_reg_word61_chain_out_data) begin: card_core0_regs_fifo1_reg_word62_read_chain
@@ -3606,7 +3604,7 @@ assign card_core0_regs_fifo1_reg_word62_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word63_mine = (card_core0_regs_fifo1_reg_addr == 96);
+assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 96);
 
 
 always @(card_core0_regs_fifo1_reg_word63_mine, card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word62_chain_out_data) begin: card_core0_regs_fifo1_reg_word63_read_chain
@@ -3664,7 +3662,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_mine = (card_core0_regs_fifo1_reg_addr == 100);
+assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 100);
 
 
 always @(card_core0_regs_fifo1_reg_word64_mine, card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word63_chain_out_data) begin: card_core0_regs_fifo1_reg_word64_read_chain
@@ -3686,7 +3684,7 @@ assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word65_mine = (card_core0_regs_fifo1_reg_addr == 104);
+assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 104);
 
 
 always @(card_core0_regs_fifo1_reg_word65_mine, card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word64_chain_out_data) begin: card_core0_regs_fifo1_reg_word65_read_chain
@@ -3708,7 +3706,7 @@ assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word66_mine = (card_core0_regs_fifo1_reg_addr == 108);
+assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word66_mine, card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word65_chain_out_data) begin: card_core0_regs_fifo1_reg_word66_read_chain
@@ -3763,7 +3761,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine = (card_core0_regs_fifo1_reg_addr == 112);
+assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 112);
 
 
 always @(card_core0_regs_fifo1_reg_word67_mine, card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word66_chain_out_data) begin: card_core0_regs_fifo1_reg_word67_read_chain
@@ -3829,7 +3827,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine = (card_core0_regs_fifo1_reg_addr == 116);
+assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 116);
 
 
 always @(card_core0_regs_fifo1_reg_word68_mine, card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word67_chain_out_data) begin: card_core0_regs_fifo1_reg_word68_read_chain
@@ -3895,7 +3893,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_mine = (card_core0_regs_fifo1_reg_addr == 120);
+assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 120);
 
 
 always @(card_core0_regs_fifo1_reg_word69_mine, card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word68_chain_out_data) begin: card_core0_regs_fifo1_reg_word69_read_chain
@@ -3955,7 +3953,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine = (card_core0_regs_fifo1_reg_addr == 124);
+assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 124);
 
 
 always @(card_core0_regs_fifo1_reg_word70_mine, card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word69_chain_out_data) begin: card_core0_regs_fifo1_reg_word70_read_chain
@@ -4007,7 +4005,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine = (card_core0_regs_fifo1_reg_addr == 128);
+assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 128);
 
 
 always @(card_core0_regs_fifo1_reg_word71_mine, card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word70_chain_out_data) begin: card_core0_regs_fifo1_reg_word71_read_chain
@@ -4029,7 +4027,7 @@ assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word72_mine = (card_core0_regs_fifo1_reg_addr == 132);
+assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word72_mine, card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word71_chain_out_data) begin: card_core0_regs_fifo1_reg_word72_read_chain
@@ -4095,7 +4093,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine = (card_core0_regs_fifo1_reg_addr == 136);
+assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word73_mine, card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word72_chain_out_data) begin: card_core0_regs_fifo1_reg_word73_read_chain
@@ -4161,7 +4159,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word74_mine = (card_core0_regs_fifo1_reg_addr == 140);
+assign card_core0_regs_fifo1_reg_word74_mine = (pci_slave1_pci_requests1_local_addr == 140);
 
 
 always @(card_core0_regs_fifo1_reg_word74_mine, card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word73_chain_out_data) begin: card_core0_regs_fifo1_reg_word74_read_chain
@@ -4224,7 +4222,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word75_mine = (card_core0_regs_fifo1_reg_addr == 144);
+assign card_core0_regs_fifo1_reg_word75_mine = (pci_slave1_pci_requests1_local_addr == 144);
 
 
 always @(card_core0_regs_fifo1_reg_word75_mine, card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word74_chain_out_data) begin: card_core0_regs_fifo1_reg_word75_read_chain
@@ -4290,7 +4288,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word76_mine = (card_core0_regs_fifo1_reg_addr == 148);
+assign card_core0_regs_fifo1_reg_word76_mine = (pci_slave1_pci_requests1_local_addr == 148);
 
 
 always @(card_core0_regs_fifo1_reg_word76_mine, card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word75_chain_out_data) begin: card_core0_regs_fifo1_reg_word76_read_chain
@@ -4356,7 +4354,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_mine = (card_core0_regs_fifo1_reg_addr == 152);
+assign card_core0_regs_fifo1_reg_word77_mine = (pci_slave1_pci_requests1_local_addr == 152);
 
 
 always @(card_core0_regs_fifo1_reg_word77_mine, card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word76_chain_out_data) begin: card_core0_regs_fifo1_reg_word77_read_chain
@@ -5270,56 +5268,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
 end
 
 
-always @(pci_slave1_pci_requests1_local_addr) begin: card_core0_regs_fifo1_axis_block1_look_up
-    case (pci_slave1_pci_requests1_local_addr[7-1:2])
-        0: card_core0_regs_fifo1_axis_block1_looked_up = 32;
-        1: card_core0_regs_fifo1_axis_block1_looked_up = 68;
-        2: card_core0_regs_fifo1_axis_block1_looked_up = 76;
-        3: card_core0_regs_fifo1_axis_block1_looked_up = 268;
-        4: card_core0_regs_fifo1_axis_block1_looked_up = 272;
-        5: card_core0_regs_fifo1_axis_block1_looked_up = 276;
-        6: card_core0_regs_fifo1_axis_block1_looked_up = 280;
-        7: card_core0_regs_fifo1_axis_block1_looked_up = 284;
-        8: card_core0_regs_fifo1_axis_block1_looked_up = 288;
-        9: card_core0_regs_fifo1_axis_block1_looked_up = 292;
-        10: card_core0_regs_fifo1_axis_block1_looked_up = 296;
-        11: card_core0_regs_fifo1_axis_block1_looked_up = 300;
-        12: card_core0_regs_fifo1_axis_block1_looked_up = 304;
-        13: card_core0_regs_fifo1_axis_block1_looked_up = 308;
-        14: card_core0_regs_fifo1_axis_block1_looked_up = 312;
-        15: card_core0_regs_fifo1_axis_block1_looked_up = 316;
-        16: card_core0_regs_fifo1_axis_block1_looked_up = 36;
-        17: card_core0_regs_fifo1_axis_block1_looked_up = 72;
-        18: card_core0_regs_fifo1_axis_block1_looked_up = 80;
-        19: card_core0_regs_fifo1_axis_block1_looked_up = 332;
-        20: card_core0_regs_fifo1_axis_block1_looked_up = 336;
-        21: card_core0_regs_fifo1_axis_block1_looked_up = 340;
-        22: card_core0_regs_fifo1_axis_block1_looked_up = 344;
-        23: card_core0_regs_fifo1_axis_block1_looked_up = 348;
-        24: card_core0_regs_fifo1_axis_block1_looked_up = 352;
-        25: card_core0_regs_fifo1_axis_block1_looked_up = 356;
-        26: card_core0_regs_fifo1_axis_block1_looked_up = 360;
-        27: card_core0_regs_fifo1_axis_block1_looked_up = 364;
-        28: card_core0_regs_fifo1_axis_block1_looked_up = 368;
-        29: card_core0_regs_fifo1_axis_block1_looked_up = 372;
-        30: card_core0_regs_fifo1_axis_block1_looked_up = 376;
-        default: card_core0_regs_fifo1_axis_block1_looked_up = 380;
-    endcase
-end
 
-
-always @(pci_slave1_pci_requests1_local_addr, card_core0_regs_fifo1_axis_block1_looked_up) begin: card_core0_regs_fifo1_axis_block1_translate
-    if ((pci_slave1_pci_requests1_local_addr[12-1:7] == 2)) begin
-        card_core0_regs_fifo1_reg_addr = card_core0_regs_fifo1_axis_block1_looked_up;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_addr = pci_slave1_pci_requests1_local_addr;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_axis_block1_take = (card_core0_regs_fifo1_io_read && (card_core0_regs_fifo1_reg_addr == 32));
+assign card_core0_regs_fifo1_axis_block1_take = (card_core0_regs_fifo1_io_read && ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256)));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_axis_block1__snapshot1_capture
@@ -6204,7 +6154,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
     end
     else begin
         card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
-        card_core0_regs_fifo1_written_addr <= card_core0_regs_fifo1_reg_addr;
+        card_core0_regs_fifo1_written_addr <= pci_slave1_pci_requests1_local_addr;
         card_core0_regs_fifo1_written_data <= pci_slave1_pci_requests1_local_wdata;
         card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
     end

@@ -58,8 +58,8 @@ module regs_fifo (
 // 
 // Ports: ``local`` (the target's back end; space 0 = the registers of
 // ``models/registers.py``: BAR0's at their offsets, beyond them BAR2's
-// per-axis blocks, X's and Y's turned into BAR0's offsets by
-// ``axis_block``; space 1 = the FIFO: every data phase with a byte
+// per-axis blocks, X's and Y's answered by BAR0's register words
+// (``reg_word``'s ``aliases``); space 1 = the FIFO: every data phase with a byte
 // enabled pushes one word; ``local.room`` is high while the FIFO has
 // three free places, the promise the target needs before it acknowledges
 // a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -219,7 +219,6 @@ reg pulse_clear;
 reg push;
 reg read_waited;
 reg [31:0] read_word;
-reg [15:0] reg_addr;
 reg releasing;
 wire [1:0] requested;
 reg requested_before;
@@ -706,7 +705,6 @@ reg direct_pulse1_command_load;
 reg direct_pulse1_command_retarget;
 reg signed [23:0] direct_pulse1_command_count;
 reg [15:0] direct_pulse1_command_period;
-reg [15:0] axis_block0_looked_up;
 wire axis_block0_take;
 reg signed [31:0] axis_block0__snapshot0_live;
 reg [2:0] pulse_out0_count;
@@ -949,7 +947,7 @@ assign local_room = sync_fifo0_free[(3 - 1)];
 
 
 
-assign reg_word0_mine = (reg_addr == 0);
+assign reg_word0_mine = (local_addr == 0);
 
 
 always @(reg_word0_mine, reg_word0_shown_wide, reg_word0_chain_in_data) begin: reg_word0_read_chain
@@ -971,7 +969,7 @@ assign reg_word0_chain_out_clamped = reg_word0_chain_in_clamped;
 
 
 
-assign reg_word1_mine = (reg_addr == 4);
+assign reg_word1_mine = (local_addr == 4);
 
 
 always @(reg_word1_mine, reg_word1_shown_wide, reg_word0_chain_out_data) begin: reg_word1_read_chain
@@ -1026,7 +1024,7 @@ end
 
 
 
-assign reg_word2_mine = (reg_addr == 8);
+assign reg_word2_mine = (local_addr == 8);
 
 
 always @(reg_word2_mine, reg_word2_shown_wide, reg_word1_chain_out_data) begin: reg_word2_read_chain
@@ -1078,7 +1076,7 @@ end
 
 
 
-assign reg_word3_mine = (reg_addr == 12);
+assign reg_word3_mine = (local_addr == 12);
 
 
 always @(reg_word3_mine, reg_word3_shown_wide, reg_word2_chain_out_data) begin: reg_word3_read_chain
@@ -1100,7 +1098,7 @@ assign reg_word3_chain_out_clamped = reg_word2_chain_out_clamped;
 
 
 
-assign reg_word4_mine = (reg_addr == 16);
+assign reg_word4_mine = (local_addr == 16);
 
 
 always @(reg_word4_mine, reg_word4_shown_wide, reg_word3_chain_out_data) begin: reg_word4_read_chain
@@ -1155,7 +1153,7 @@ end
 
 
 
-assign reg_word5_mine = (reg_addr == 20);
+assign reg_word5_mine = (local_addr == 20);
 
 
 always @(reg_word5_mine, reg_word5_shown_wide, reg_word4_chain_out_data) begin: reg_word5_read_chain
@@ -1204,7 +1202,7 @@ end
 
 
 
-assign reg_word6_mine = (reg_addr == 24);
+assign reg_word6_mine = (local_addr == 24);
 
 
 always @(reg_word6_mine, reg_word6_shown_wide, reg_word5_chain_out_data) begin: reg_word6_read_chain
@@ -1267,7 +1265,7 @@ end
 
 
 
-assign reg_word7_mine = (reg_addr == 28);
+assign reg_word7_mine = (local_addr == 28);
 
 
 always @(reg_word7_mine, reg_word7_shown_wide, reg_word6_chain_out_data) begin: reg_word7_read_chain
@@ -1289,7 +1287,7 @@ assign reg_word7_chain_out_clamped = reg_word6_chain_out_clamped;
 
 
 
-assign reg_word8_mine = (reg_addr == 32);
+assign reg_word8_mine = ((local_addr == 32) || (local_addr == 256));
 
 
 always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_chain_out_data) begin: reg_word8_read_chain
@@ -1311,7 +1309,7 @@ assign reg_word8_chain_out_clamped = reg_word7_chain_out_clamped;
 
 
 
-assign reg_word9_mine = (reg_addr == 36);
+assign reg_word9_mine = ((local_addr == 36) || (local_addr == 320));
 
 
 always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_chain_out_data) begin: reg_word9_read_chain
@@ -1333,7 +1331,7 @@ assign reg_word9_chain_out_clamped = reg_word8_chain_out_clamped;
 
 
 
-assign reg_word10_mine = (reg_addr == 40);
+assign reg_word10_mine = (local_addr == 40);
 
 
 always @(reg_word10_mine, reg_word10_shown_wide, reg_word9_chain_out_data) begin: reg_word10_read_chain
@@ -1399,7 +1397,7 @@ end
 
 
 
-assign reg_word11_mine = (reg_addr == 44);
+assign reg_word11_mine = (local_addr == 44);
 
 
 always @(reg_word11_mine, reg_word11_shown_wide, reg_word10_chain_out_data) begin: reg_word11_read_chain
@@ -1465,7 +1463,7 @@ end
 
 
 
-assign reg_word12_mine = (reg_addr == 48);
+assign reg_word12_mine = (local_addr == 48);
 
 
 always @(reg_word12_mine, reg_word12_shown_wide, reg_word11_chain_out_data) begin: reg_word12_read_chain
@@ -1528,7 +1526,7 @@ end
 
 
 
-assign reg_word13_mine = (reg_addr == 52);
+assign reg_word13_mine = (local_addr == 52);
 
 
 always @(reg_word13_mine, reg_word13_shown_wide, reg_word12_chain_out_data) begin: reg_word13_read_chain
@@ -1594,7 +1592,7 @@ end
 
 
 
-assign reg_word14_mine = (reg_addr == 56);
+assign reg_word14_mine = (local_addr == 56);
 
 
 always @(reg_word14_mine, reg_word14_shown_wide, reg_word13_chain_out_data) begin: reg_word14_read_chain
@@ -1660,7 +1658,7 @@ end
 
 
 
-assign reg_word15_mine = (reg_addr == 60);
+assign reg_word15_mine = (local_addr == 60);
 
 
 always @(reg_word15_mine, reg_word15_shown_wide, reg_word14_chain_out_data) begin: reg_word15_read_chain
@@ -1726,7 +1724,7 @@ end
 
 
 
-assign reg_word16_mine = (reg_addr == 64);
+assign reg_word16_mine = (local_addr == 64);
 
 
 always @(reg_word16_mine, reg_word16_shown_wide, reg_word15_chain_out_data) begin: reg_word16_read_chain
@@ -1781,7 +1779,7 @@ end
 
 
 
-assign reg_word17_mine = (reg_addr == 68);
+assign reg_word17_mine = ((local_addr == 68) || (local_addr == 260));
 
 
 always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_chain_out_data) begin: reg_word17_read_chain
@@ -1799,7 +1797,7 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 
 
 
-assign reg_word17_mine_write = (written_addr == 68);
+assign reg_word17_mine_write = ((written_addr == 68) || (written_addr == 260));
 
 
 always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word17_merge_bytes
@@ -1847,7 +1845,7 @@ end
 
 
 
-assign reg_word18_mine = (reg_addr == 72);
+assign reg_word18_mine = ((local_addr == 72) || (local_addr == 324));
 
 
 always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_chain_out_data) begin: reg_word18_read_chain
@@ -1865,7 +1863,7 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 
 
 
-assign reg_word18_mine_write = (written_addr == 72);
+assign reg_word18_mine_write = ((written_addr == 72) || (written_addr == 324));
 
 
 always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word18_merge_bytes
@@ -1913,7 +1911,7 @@ end
 
 
 
-assign reg_word19_mine = (reg_addr == 76);
+assign reg_word19_mine = ((local_addr == 76) || (local_addr == 264));
 
 
 always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_chain_out_data) begin: reg_word19_read_chain
@@ -1931,7 +1929,7 @@ assign reg_word19_shown_wide = {8'h0, reg_word19_shown};
 
 
 
-assign reg_word19_mine_write = (written_addr == 76);
+assign reg_word19_mine_write = ((written_addr == 76) || (written_addr == 264));
 
 
 
@@ -1977,7 +1975,7 @@ end
 
 
 
-assign reg_word20_mine = (reg_addr == 80);
+assign reg_word20_mine = ((local_addr == 80) || (local_addr == 328));
 
 
 always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_chain_out_data) begin: reg_word20_read_chain
@@ -1995,7 +1993,7 @@ assign reg_word20_shown_wide = {8'h0, reg_word20_shown};
 
 
 
-assign reg_word20_mine_write = (written_addr == 80);
+assign reg_word20_mine_write = ((written_addr == 80) || (written_addr == 328));
 
 
 
@@ -2041,7 +2039,7 @@ end
 
 
 
-assign reg_word21_mine = (reg_addr == 84);
+assign reg_word21_mine = (local_addr == 84);
 
 
 always @(reg_word21_mine, reg_word21_shown_wide, reg_word20_chain_out_data) begin: reg_word21_read_chain
@@ -2063,7 +2061,7 @@ assign reg_word21_chain_out_clamped = reg_word20_chain_out_clamped;
 
 
 
-assign reg_word22_mine = (reg_addr == 88);
+assign reg_word22_mine = (local_addr == 88);
 
 
 always @(reg_word22_mine, reg_word22_shown_wide, reg_word21_chain_out_data) begin: reg_word22_read_chain
@@ -2085,7 +2083,7 @@ assign reg_word22_chain_out_clamped = reg_word21_chain_out_clamped;
 
 
 
-assign reg_word23_mine = (reg_addr == 92);
+assign reg_word23_mine = (local_addr == 92);
 
 
 always @(reg_word23_mine, reg_word23_shown_wide, reg_word22_chain_out_data) begin: reg_word23_read_chain
@@ -2107,7 +2105,7 @@ assign reg_word23_chain_out_clamped = reg_word22_chain_out_clamped;
 
 
 
-assign reg_word24_mine = (reg_addr == 96);
+assign reg_word24_mine = (local_addr == 96);
 
 
 always @(reg_word24_mine, reg_word24_shown_wide, reg_word23_chain_out_data) begin: reg_word24_read_chain
@@ -2165,7 +2163,7 @@ end
 
 
 
-assign reg_word25_mine = (reg_addr == 100);
+assign reg_word25_mine = (local_addr == 100);
 
 
 always @(reg_word25_mine, reg_word25_shown_wide, reg_word24_chain_out_data) begin: reg_word25_read_chain
@@ -2187,7 +2185,7 @@ assign reg_word25_chain_out_clamped = reg_word24_chain_out_clamped;
 
 
 
-assign reg_word26_mine = (reg_addr == 104);
+assign reg_word26_mine = (local_addr == 104);
 
 
 always @(reg_word26_mine, reg_word26_shown_wide, reg_word25_chain_out_data) begin: reg_word26_read_chain
@@ -2209,7 +2207,7 @@ assign reg_word26_chain_out_clamped = reg_word25_chain_out_clamped;
 
 
 
-assign reg_word27_mine = (reg_addr == 108);
+assign reg_word27_mine = (local_addr == 108);
 
 
 always @(reg_word27_mine, reg_word27_shown_wide, reg_word26_chain_out_data) begin: reg_word27_read_chain
@@ -2264,7 +2262,7 @@ end
 
 
 
-assign reg_word28_mine = (reg_addr == 112);
+assign reg_word28_mine = (local_addr == 112);
 
 
 always @(reg_word28_mine, reg_word28_shown_wide, reg_word27_chain_out_data) begin: reg_word28_read_chain
@@ -2330,7 +2328,7 @@ end
 
 
 
-assign reg_word29_mine = (reg_addr == 116);
+assign reg_word29_mine = (local_addr == 116);
 
 
 always @(reg_word29_mine, reg_word29_shown_wide, reg_word28_chain_out_data) begin: reg_word29_read_chain
@@ -2396,7 +2394,7 @@ end
 
 
 
-assign reg_word30_mine = (reg_addr == 120);
+assign reg_word30_mine = (local_addr == 120);
 
 
 always @(reg_word30_mine, reg_word30_shown_wide, reg_word29_chain_out_data) begin: reg_word30_read_chain
@@ -2456,7 +2454,7 @@ end
 
 
 
-assign reg_word31_mine = (reg_addr == 124);
+assign reg_word31_mine = (local_addr == 124);
 
 
 always @(reg_word31_mine, reg_word31_shown_wide, reg_word30_chain_out_data) begin: reg_word31_read_chain
@@ -2508,7 +2506,7 @@ end
 
 
 
-assign reg_word32_mine = (reg_addr == 128);
+assign reg_word32_mine = (local_addr == 128);
 
 
 always @(reg_word32_mine, reg_word32_shown_wide, reg_word31_chain_out_data) begin: reg_word32_read_chain
@@ -2530,7 +2528,7 @@ assign reg_word32_chain_out_clamped = reg_word31_chain_out_clamped;
 
 
 
-assign reg_word33_mine = (reg_addr == 132);
+assign reg_word33_mine = (local_addr == 132);
 
 
 always @(reg_word33_mine, reg_word33_shown_wide, reg_word32_chain_out_data) begin: reg_word33_read_chain
@@ -2596,7 +2594,7 @@ end
 
 
 
-assign reg_word34_mine = (reg_addr == 136);
+assign reg_word34_mine = (local_addr == 136);
 
 
 always @(reg_word34_mine, reg_word34_shown_wide, reg_word33_chain_out_data) begin: reg_word34_read_chain
@@ -2662,7 +2660,7 @@ end
 
 
 
-assign reg_word35_mine = (reg_addr == 140);
+assign reg_word35_mine = (local_addr == 140);
 
 
 always @(reg_word35_mine, reg_word35_shown_wide, reg_word34_chain_out_data) begin: reg_word35_read_chain
@@ -2725,7 +2723,7 @@ end
 
 
 
-assign reg_word36_mine = (reg_addr == 144);
+assign reg_word36_mine = (local_addr == 144);
 
 
 always @(reg_word36_mine, reg_word36_shown_wide, reg_word35_chain_out_data) begin: reg_word36_read_chain
@@ -2791,7 +2789,7 @@ end
 
 
 
-assign reg_word37_mine = (reg_addr == 148);
+assign reg_word37_mine = (local_addr == 148);
 
 
 always @(reg_word37_mine, reg_word37_shown_wide, reg_word36_chain_out_data) begin: reg_word37_read_chain
@@ -2857,7 +2855,7 @@ end
 
 
 
-assign reg_word38_mine = (reg_addr == 152);
+assign reg_word38_mine = (local_addr == 152);
 
 
 always @(reg_word38_mine, reg_word38_shown_wide, reg_word37_chain_out_data) begin: reg_word38_read_chain
@@ -3771,56 +3769,8 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
 end
 
 
-always @(local_addr) begin: axis_block0_look_up
-    case (local_addr[7-1:2])
-        0: axis_block0_looked_up = 32;
-        1: axis_block0_looked_up = 68;
-        2: axis_block0_looked_up = 76;
-        3: axis_block0_looked_up = 268;
-        4: axis_block0_looked_up = 272;
-        5: axis_block0_looked_up = 276;
-        6: axis_block0_looked_up = 280;
-        7: axis_block0_looked_up = 284;
-        8: axis_block0_looked_up = 288;
-        9: axis_block0_looked_up = 292;
-        10: axis_block0_looked_up = 296;
-        11: axis_block0_looked_up = 300;
-        12: axis_block0_looked_up = 304;
-        13: axis_block0_looked_up = 308;
-        14: axis_block0_looked_up = 312;
-        15: axis_block0_looked_up = 316;
-        16: axis_block0_looked_up = 36;
-        17: axis_block0_looked_up = 72;
-        18: axis_block0_looked_up = 80;
-        19: axis_block0_looked_up = 332;
-        20: axis_block0_looked_up = 336;
-        21: axis_block0_looked_up = 340;
-        22: axis_block0_looked_up = 344;
-        23: axis_block0_looked_up = 348;
-        24: axis_block0_looked_up = 352;
-        25: axis_block0_looked_up = 356;
-        26: axis_block0_looked_up = 360;
-        27: axis_block0_looked_up = 364;
-        28: axis_block0_looked_up = 368;
-        29: axis_block0_looked_up = 372;
-        30: axis_block0_looked_up = 376;
-        default: axis_block0_looked_up = 380;
-    endcase
-end
 
-
-always @(local_addr, axis_block0_looked_up) begin: axis_block0_translate
-    if ((local_addr[16-1:7] == 2)) begin
-        reg_addr = axis_block0_looked_up;
-    end
-    else begin
-        reg_addr = local_addr;
-    end
-end
-
-
-
-assign axis_block0_take = (io_read && (reg_addr == 32));
+assign axis_block0_take = (io_read && ((local_addr == 32) || (local_addr == 256)));
 
 
 always @(posedge clock, negedge reset) begin: axis_block0__snapshot0_capture
@@ -4705,7 +4655,7 @@ always @(posedge clock, negedge reset) begin: write_stage
     end
     else begin
         io_written <= io_write;
-        written_addr <= reg_addr;
+        written_addr <= local_addr;
         written_data <= local_wdata;
         written_mask <= byte_mask;
     end

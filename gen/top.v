@@ -330,7 +330,6 @@ reg card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
 reg card1_card_core1_regs_fifo2_read_waited;
 reg [31:0] card1_card_core1_regs_fifo2_read_word;
-reg [11:0] card1_card_core1_regs_fifo2_reg_addr;
 reg card1_card_core1_regs_fifo2_releasing;
 wire [1:0] card1_card_core1_regs_fifo2_requested;
 reg card1_card_core1_regs_fifo2_requested_before;
@@ -838,7 +837,6 @@ reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
-reg [11:0] card1_card_core1_regs_fifo2_axis_block2_looked_up;
 wire card1_card_core1_regs_fifo2_axis_block2_take;
 reg signed [31:0] card1_card_core1_regs_fifo2_axis_block2__snapshot2_live;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
@@ -3279,7 +3277,7 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_card_core1_regs_fifo2_reg_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
@@ -3301,7 +3299,7 @@ assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_card_core1_regs_fifo2_reg_addr == 4);
+assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
@@ -3356,7 +3354,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_card_core1_regs_fifo2_reg_addr == 8);
+assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
@@ -3408,7 +3406,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_card_core1_regs_fifo2_reg_addr == 12);
+assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
@@ -3430,7 +3428,7 @@ assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_card_core1_regs_fifo2_reg_addr == 16);
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
@@ -3485,7 +3483,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_card_core1_regs_fifo2_reg_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
@@ -3534,7 +3532,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_card_core1_regs_fifo2_reg_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
@@ -3597,7 +3595,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_card_core1_regs_fifo2_reg_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
@@ -3619,7 +3617,7 @@ assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_card_core1_regs_fifo2_reg_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word86_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -3641,7 +3639,7 @@ assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_card_core1_regs_fifo2_reg_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word87_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_pci_slave2_pci_requests2_local_addr == 320));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -3663,7 +3661,7 @@ assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_card_core1_regs_fifo2_reg_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
@@ -3729,7 +3727,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_card_core1_regs_fifo2_reg_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
@@ -3795,7 +3793,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_card_core1_regs_fifo2_reg_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3858,7 +3856,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_card_core1_regs_fifo2_reg_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -3924,7 +3922,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_card_core1_regs_fifo2_reg_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
@@ -3990,7 +3988,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_card_core1_regs_fifo2_reg_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word93_mine, card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_reg_word92_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word93_read_chain
@@ -4056,7 +4054,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_card_core1_regs_fifo2_reg_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word94_mine, card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word93_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word94_read_chain
@@ -4111,7 +4109,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_card_core1_regs_fifo2_reg_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word95_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_pci_slave2_pci_requests2_local_addr == 260));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
@@ -4129,7 +4127,7 @@ assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word95_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
@@ -4177,7 +4175,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_card_core1_regs_fifo2_reg_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word96_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_pci_slave2_pci_requests2_local_addr == 324));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
@@ -4195,7 +4193,7 @@ assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word96_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
@@ -4243,7 +4241,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_card_core1_regs_fifo2_reg_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word97_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_pci_slave2_pci_requests2_local_addr == 264));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
@@ -4261,7 +4259,7 @@ assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {8'h0, card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word97_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_written_addr == 264));
 
 
 
@@ -4307,7 +4305,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_card_core1_regs_fifo2_reg_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word98_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_pci_slave2_pci_requests2_local_addr == 328));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
@@ -4325,7 +4323,7 @@ assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {8'h0, card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word98_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_written_addr == 328));
 
 
 
@@ -4371,7 +4369,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_card_core1_regs_fifo2_reg_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4393,7 +4391,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_card_core1_regs_fifo2_reg_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4415,7 +4413,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_card_core1_regs_fifo2_reg_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4437,7 +4435,7 @@ assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_card_core1_regs_fifo2_reg_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4495,7 +4493,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_card_core1_regs_fifo2_reg_addr == 100);
+assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word103_mine, card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word102_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word103_read_chain
@@ -4517,7 +4515,7 @@ assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_card_core1_regs_fifo2_reg_addr == 104);
+assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word104_mine, card1_card_core1_regs_fifo2_reg_word104_shown_wide, card1_card_core1_regs_fifo2_reg_word103_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word104_read_chain
@@ -4539,7 +4537,7 @@ assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_card_core1_regs_fifo2_reg_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word105_mine, card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word104_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word105_read_chain
@@ -4594,7 +4592,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_card_core1_regs_fifo2_reg_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word106_mine, card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word105_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word106_read_chain
@@ -4660,7 +4658,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_card_core1_regs_fifo2_reg_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_mine, card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word106_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word107_read_chain
@@ -4726,7 +4724,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_card_core1_regs_fifo2_reg_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word108_mine, card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word107_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word108_read_chain
@@ -4786,7 +4784,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_card_core1_regs_fifo2_reg_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word109_mine, card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word108_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word109_read_chain
@@ -4838,7 +4836,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_card_core1_regs_fifo2_reg_addr == 128);
+assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word110_mine, card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word109_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word110_read_chain
@@ -4860,7 +4858,7 @@ assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_card_core1_regs_fifo2_reg_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word111_mine, card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word110_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word111_read_chain
@@ -4926,7 +4924,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_card_core1_regs_fifo2_reg_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word112_mine, card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word111_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word112_read_chain
@@ -4992,7 +4990,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_card_core1_regs_fifo2_reg_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word113_mine, card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word112_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word113_read_chain
@@ -5055,7 +5053,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_card_core1_regs_fifo2_reg_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word114_mine, card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word113_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word114_read_chain
@@ -5121,7 +5119,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_card_core1_regs_fifo2_reg_addr == 148);
+assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_pci_slave2_pci_requests2_local_addr == 148);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word115_mine, card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word114_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word115_read_chain
@@ -5187,7 +5185,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_card_core1_regs_fifo2_reg_addr == 152);
+assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_pci_slave2_pci_requests2_local_addr == 152);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word116_mine, card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word115_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word116_read_chain
@@ -6101,56 +6099,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
 end
 
 
-always @(card1_pci_slave2_pci_requests2_local_addr) begin: card1_card_core1_regs_fifo2_axis_block2_look_up
-    case (card1_pci_slave2_pci_requests2_local_addr[7-1:2])
-        0: card1_card_core1_regs_fifo2_axis_block2_looked_up = 32;
-        1: card1_card_core1_regs_fifo2_axis_block2_looked_up = 68;
-        2: card1_card_core1_regs_fifo2_axis_block2_looked_up = 76;
-        3: card1_card_core1_regs_fifo2_axis_block2_looked_up = 268;
-        4: card1_card_core1_regs_fifo2_axis_block2_looked_up = 272;
-        5: card1_card_core1_regs_fifo2_axis_block2_looked_up = 276;
-        6: card1_card_core1_regs_fifo2_axis_block2_looked_up = 280;
-        7: card1_card_core1_regs_fifo2_axis_block2_looked_up = 284;
-        8: card1_card_core1_regs_fifo2_axis_block2_looked_up = 288;
-        9: card1_card_core1_regs_fifo2_axis_block2_looked_up = 292;
-        10: card1_card_core1_regs_fifo2_axis_block2_looked_up = 296;
-        11: card1_card_core1_regs_fifo2_axis_block2_looked_up = 300;
-        12: card1_card_core1_regs_fifo2_axis_block2_looked_up = 304;
-        13: card1_card_core1_regs_fifo2_axis_block2_looked_up = 308;
-        14: card1_card_core1_regs_fifo2_axis_block2_looked_up = 312;
-        15: card1_card_core1_regs_fifo2_axis_block2_looked_up = 316;
-        16: card1_card_core1_regs_fifo2_axis_block2_looked_up = 36;
-        17: card1_card_core1_regs_fifo2_axis_block2_looked_up = 72;
-        18: card1_card_core1_regs_fifo2_axis_block2_looked_up = 80;
-        19: card1_card_core1_regs_fifo2_axis_block2_looked_up = 332;
-        20: card1_card_core1_regs_fifo2_axis_block2_looked_up = 336;
-        21: card1_card_core1_regs_fifo2_axis_block2_looked_up = 340;
-        22: card1_card_core1_regs_fifo2_axis_block2_looked_up = 344;
-        23: card1_card_core1_regs_fifo2_axis_block2_looked_up = 348;
-        24: card1_card_core1_regs_fifo2_axis_block2_looked_up = 352;
-        25: card1_card_core1_regs_fifo2_axis_block2_looked_up = 356;
-        26: card1_card_core1_regs_fifo2_axis_block2_looked_up = 360;
-        27: card1_card_core1_regs_fifo2_axis_block2_looked_up = 364;
-        28: card1_card_core1_regs_fifo2_axis_block2_looked_up = 368;
-        29: card1_card_core1_regs_fifo2_axis_block2_looked_up = 372;
-        30: card1_card_core1_regs_fifo2_axis_block2_looked_up = 376;
-        default: card1_card_core1_regs_fifo2_axis_block2_looked_up = 380;
-    endcase
-end
 
-
-always @(card1_pci_slave2_pci_requests2_local_addr, card1_card_core1_regs_fifo2_axis_block2_looked_up) begin: card1_card_core1_regs_fifo2_axis_block2_translate
-    if ((card1_pci_slave2_pci_requests2_local_addr[12-1:7] == 2)) begin
-        card1_card_core1_regs_fifo2_reg_addr = card1_card_core1_regs_fifo2_axis_block2_looked_up;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_addr = card1_pci_slave2_pci_requests2_local_addr;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_axis_block2_take = (card1_card_core1_regs_fifo2_io_read && (card1_card_core1_regs_fifo2_reg_addr == 32));
+assign card1_card_core1_regs_fifo2_axis_block2_take = (card1_card_core1_regs_fifo2_io_read && ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256)));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_axis_block2__snapshot2_capture
@@ -7035,7 +6985,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
     end
     else begin
         card1_card_core1_regs_fifo2_io_written <= card1_card_core1_regs_fifo2_io_write;
-        card1_card_core1_regs_fifo2_written_addr <= card1_card_core1_regs_fifo2_reg_addr;
+        card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_pci_requests2_local_addr;
         card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_pci_requests2_local_wdata;
         card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask;
     end

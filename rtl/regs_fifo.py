@@ -36,8 +36,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
 
     Ports: ``local`` (the target's back end; space 0 = the registers of
     ``models/registers.py``: BAR0's at their offsets, beyond them BAR2's
-    per-axis blocks, X's and Y's turned into BAR0's offsets by
-    ``axis_block``; space 1 = the FIFO: every data phase with a byte
+    per-axis blocks, X's and Y's answered by BAR0's register words
+    (``reg_word``'s ``aliases``); space 1 = the FIFO: every data phase with a byte
     enabled pushes one word; ``local.room`` is high while the FIFO has
     three free places, the promise the target needs before it acknowledges
     a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -108,10 +108,10 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     hw = {name: word.hw for name, word in words.items()}
     strobes = {name: word.strobe for name, word in words.items()}
     chain = [ReadChain() for _ in range(len(specs) + 1)]
-    # the offset the registers decode: X's and Y's block offsets turned into BAR0's (axis_block)
-    reg_addr = Signal(intbv(0)[len(local.addr):])
-    register_bus = RegisterBus(len(local.addr), addr=reg_addr, write_addr=written_addr, write=io_written,
+    register_bus = RegisterBus(len(local.addr), addr=local.addr, write_addr=written_addr, write=io_written,
                                byte_mask=written_mask, wdata=written_data)
+    # X's and Y's per-axis block offsets in BAR2: their BAR0 registers answer there too
+    aliases = {bar0: (bar2,) for bar2, bar0 in regmap.axis_aliases().items()}
 
     set_port, mark = SetPort(), MarkPort()
     # named at this level, as the formal harness (formal/props) and the waves know them
@@ -145,8 +145,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     direct_out = [StepRequest(ready=direct_ready) for _ in axis_names]
     direct_busy = ConcatSignal(*reversed([d.busy for d in direct]))
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
-    axis_regs = AxisBlock(axes, len(local.addr), addr=local.addr, read=io_read, reg_addr=reg_addr,
-                          positions=position, pos_words=[hw[f"POS_{name}"] for name in axis_names[2:]])
+    axis_regs = AxisBlock(axes, len(local.addr), addr=local.addr, read=io_read, positions=position,
+                          pos_words=[hw[f"POS_{name}"] for name in axis_names[2:]])
     feed = FeedPort(dda.coord_width, run=motion_run, stop_left=dda.stop_left)
     tick, hold = feed.tick, feed.hold
     fifo_flush, soft_reset_taken = Signal(bool(0)), Signal(bool(0))
@@ -161,7 +161,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
         units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
-                              chain_in=chain[i], chain_out=chain[i + 1]))
+                              chain_in=chain[i], chain_out=chain[i + 1], aliases=aliases.get(spec.offset, ())))
     units.append(sequencer(clock, reset, fifo=FifoRead(dout=fifo_dout, empty=fifo_empty, pop=fifo_pop),
                            control=seq_control, dda=dda, pulses=pulses, set_port=set_port, mark=mark,
                            set_indices=tuple(regmap.SET_TARGETS)))
@@ -238,7 +238,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         # registered, so the target's request logic does not reach the register
         # merge and clamp logic in the same clock
         io_written.next = io_write
-        written_addr.next = reg_addr
+        written_addr.next = local.addr
         written_data.next = local.wdata
         written_mask.next = byte_mask
 

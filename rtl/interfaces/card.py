@@ -221,17 +221,14 @@ class AxisBlock:
 
     The card drives ``addr`` (the register access's byte offset), ``read`` (a
     register read is taken at this edge) and ``positions`` (``StepPositions``,
-    the live step counts); the unit drives ``reg_addr`` (the offset the
-    register words decode: X's and Y's block offsets turned into their BAR0
-    registers' offsets, every other offset as it is), ``held``
+    the live step counts); the unit drives ``held``
     (``StepPositions``: every axis's count but X's as the last POS_X read
     captured it) and ``pos_words`` (the words POS_Z, POS_A, ... read: one
     32-bit signal per axis from Z on)."""
 
     def __init__(self, axes=AXES.default, addr_width=16, positions=None, pos_words=None, **given):
         self.axes = axes
-        adopt(self, given, addr=Signal(intbv(0)[addr_width:]), read=Signal(bool(0)),
-               reg_addr=Signal(intbv(0)[addr_width:]))
+        adopt(self, given, addr=Signal(intbv(0)[addr_width:]), read=Signal(bool(0)))
         self.positions = StepPositions(axes) if positions is None else positions
         self.held = StepPositions(axes)
         self.pos_words = [Signal(intbv(0)[32:]) for _ in range(2, axes)] if pos_words is None else list(pos_words)
