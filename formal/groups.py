@@ -29,7 +29,7 @@ GENERATED = BUILD_DIR / "formal" / "generated"
 def pci_harness_parameters(build):
     """`chparam` settings of pci_target_harness for a target of ``build`` (its BARs and IDs)."""
     return dict(IO_BITS=build.io_bar_bits, MEM_BITS=build.mem_bar_bits,
-                LOCAL_WIDTH=local_addr_width(build.io_bar_bits, build.mem_bar_bits),
+                LOCAL_WIDTH=local_addr_width(build.io_bar_bits, build.mem_bar_bits, build.reg_bar_bits),
                 ID_WORD=build.device_id << 16 | build.vendor_id,
                 CLASS_WORD=build.class_code << 8 | build.revision_id,
                 SUBSYSTEM_WORD=build.subsystem_id << 16 | build.subsystem_vendor_id)

@@ -50,7 +50,9 @@ module card (
 // iCE40 cells) and the PCI IDs (``vendor_id``, ``device_id``, ...);
 // ``io_registers`` (``pci_slave``'s: True when the top's pads hold the PCI
 // registers).  BAR0 (I/O) is ``2**IO_BAR_BITS`` bytes, the size the
-// register table needs; BAR1 (memory, the FIFO window) is 4 KiB.
+// register table needs; BAR1 (memory, the FIFO window) is 4 KiB; BAR2
+// (memory) is ``2**REG_BAR_BITS`` bytes: BAR0's registers at their offsets,
+// then the per-axis register blocks.
 // 
 //     PCI --> pci_slave --LocalBus--> card_core --> STEP/DIR
 //                 ^                       |
@@ -115,6 +117,36 @@ input pins_home_x;
 input pins_home_y;
 
 wire irq;
+reg pci_slave1_idsel_q;
+reg pci_slave1_frame_q;
+reg pci_slave1_frame_qq;
+reg pci_slave1_irdy_q;
+wire [3:0] pci_slave1_state_next;
+wire pci_slave1_trdy_next;
+wire pci_slave1_stop_next;
+wire pci_slave1_devsel_next;
+wire pci_slave1_drive_next;
+wire pci_slave1_ad_oe_next;
+reg pci_slave1_trdy_q;
+reg pci_slave1_stop_q;
+reg pci_slave1_devsel_q;
+reg [31:0] pci_slave1_ad_out_q;
+reg pci_slave1_ad_parity_q;
+reg pci_slave1_perr_q;
+reg [3:0] pci_slave1_state;
+reg pci_slave1_is_read;
+reg pci_slave1_space_mem;
+reg pci_slave1_single;
+reg pci_slave1_first_phase;
+reg pci_slave1_first_pending;
+reg pci_slave1_fetching;
+reg pci_slave1_address_fault;
+reg [3:0] pci_slave1_wait_count;
+reg pci_slave1_initial_wait_over;
+reg pci_slave1_subsequent_wait_over;
+reg [9:0] pci_slave1_req_addr;
+reg pci_slave1_req_addr_stale;
+reg [1:0] pci_slave1_io_byte;
 reg pci_slave1_wq_valid;
 reg pci_slave1_h_valid;
 reg pci_slave1_s_valid;
@@ -127,104 +159,74 @@ reg pci_slave1_io_enable;
 reg pci_slave1_mem_enable;
 reg pci_slave1_parity_response;
 reg pci_slave1_serr_enable;
+reg pci_slave1_interrupt_disable;
 reg [15:0] pci_slave1_bar0;
 reg [31:0] pci_slave1_bar1;
 reg [31:0] pci_slave1_bar2;
 reg pci_slave1_fatal;
+reg pci_slave1_parity_error_q;
+wire pci_slave1_address_phase;
+reg pci_slave1_ad_out_parity;
+wire pci_slave1_perr_next;
+wire pci_slave1_perr_oe_next;
+wire pci_slave1_serr_oe_next;
+wire pci_slave1_address_fault_next;
+wire pci_slave1_parity_error_next;
+reg pci_slave1_claim;
+reg pci_slave1_claim_config;
+reg pci_slave1_claim_io;
+reg pci_slave1_claim_alias;
 reg pci_slave1_read_command;
+wire pci_slave1_first_phase_next;
+wire pci_slave1_phase_step;
 wire pci_slave1_write_done_next;
 wire pci_slave1_config_write_next;
 wire pci_slave1_posting;
 wire pci_slave1_wq_valid_next;
 reg pci_slave1_b_kept;
 wire pci_slave1_b_valid_next;
+reg [9:0] pci_slave1_start_addr;
+wire pci_slave1_got;
+wire pci_slave1_accepted;
 reg pci_slave1_first_ready;
 reg pci_slave1_fetch_more;
 wire pci_slave1_hold_got;
 wire pci_slave1_hold_accepted;
 wire pci_slave1_hold_retry;
 wire pci_slave1_burst_got;
-reg [1:0] pci_slave1_buffered_next;
-wire pci_slave1_accepted;
-wire pci_slave1_ad_oe_next;
-reg [31:0] pci_slave1_ad_out_next;
-reg pci_slave1_ad_out_parity;
-reg [31:0] pci_slave1_ad_out_q;
-reg pci_slave1_ad_parity_q;
-reg [31:0] pci_slave1_ad_q;
-reg pci_slave1_address_fault;
-wire pci_slave1_address_fault_next;
-wire pci_slave1_address_phase;
-reg pci_slave1_at_last;
-reg pci_slave1_b_valid;
-reg pci_slave1_before_last;
-reg [3:0] pci_slave1_cbe_q;
-reg pci_slave1_claim;
-reg pci_slave1_claim_alias;
-reg pci_slave1_claim_config;
-reg pci_slave1_claim_io;
-wire pci_slave1_devsel_next;
-reg pci_slave1_devsel_q;
 wire pci_slave1_draining;
-wire pci_slave1_drive_next;
-reg pci_slave1_fetching;
-reg pci_slave1_first_pending;
-reg pci_slave1_first_phase;
-wire pci_slave1_first_phase_next;
-reg pci_slave1_frame_q;
-reg pci_slave1_frame_qq;
-wire pci_slave1_got;
-reg pci_slave1_idsel_q;
-reg pci_slave1_initial_wait_over;
-reg pci_slave1_interrupt_disable;
-reg [1:0] pci_slave1_io_byte;
-reg pci_slave1_irdy_q;
-reg pci_slave1_is_config;
-reg pci_slave1_is_read;
-wire pci_slave1_parity_error_next;
-reg pci_slave1_parity_error_q;
-wire pci_slave1_perr_next;
-wire pci_slave1_perr_oe_next;
-reg pci_slave1_perr_q;
-reg [9:0] pci_slave1_phase_addr;
-wire pci_slave1_phase_step;
-reg [31:0] pci_slave1_read_source;
-reg [9:0] pci_slave1_req_addr;
-reg pci_slave1_req_addr_stale;
-wire pci_slave1_serr_oe_next;
-reg pci_slave1_single;
-reg pci_slave1_space_mem;
-reg [31:0] pci_slave1_spare_data;
-reg [9:0] pci_slave1_start_addr;
-reg [3:0] pci_slave1_state;
-wire [3:0] pci_slave1_state_next;
-wire pci_slave1_stop_next;
-reg pci_slave1_stop_q;
-reg pci_slave1_subsequent_wait_over;
-reg pci_slave1_timeout;
-wire pci_slave1_trdy_next;
-reg pci_slave1_trdy_q;
-reg [3:0] pci_slave1_wait_count;
+reg [1:0] pci_slave1_buffered_next;
 reg pci_slave1_waiting;
+reg pci_slave1_timeout;
+reg pci_slave1_at_last;
+reg pci_slave1_before_last;
+reg [31:0] pci_slave1_ad_q;
+reg pci_slave1_b_valid;
+reg [3:0] pci_slave1_cbe_q;
+reg pci_slave1_is_config;
+reg [9:0] pci_slave1_phase_addr;
+reg [31:0] pci_slave1_read_source;
+reg [31:0] pci_slave1_spare_data;
 reg [31:0] pci_slave1_config_rdata;
 reg [31:0] pci_slave1_local_rdata;
-reg pci_slave1_local_re;
-reg pci_slave1_local_ready;
-reg pci_slave1_local_retry;
-reg pci_slave1_local_we;
 wire [5:0] pci_slave1_config_index;
 wire [31:0] pci_slave1_config_data;
 wire [3:0] pci_slave1_config_cbe_n;
 wire pci_slave1_config_system_error;
 wire pci_slave1_config_irq;
+reg [31:0] pci_slave1_pci_boundary1_ad_out_next;
 reg pci_slave1_pci_parity1_bus_parity;
 wire pci_slave1_pci_parity1_perr_armed;
 wire pci_slave1_pci_parity1_serr_armed;
+reg pci_slave1_pci_requests1_local_re;
+reg pci_slave1_pci_requests1_local_we;
 reg pci_slave1_pci_requests1_local_space;
 reg pci_slave1_pci_requests1_local_write;
 reg [31:0] pci_slave1_pci_requests1_local_wdata;
 reg [3:0] pci_slave1_pci_requests1_local_be;
 reg [11:0] pci_slave1_pci_requests1_local_addr;
+reg pci_slave1_pci_requests1_local_ready;
+reg pci_slave1_pci_requests1_local_retry;
 reg pci_slave1_pci_control1_control_case0_0_exhausted;
 reg pci_slave1_pci_control1_control_case0_0_last_data;
 reg pci_slave1_pci_control1_control_case0_0_ready_for_phase;
@@ -268,12 +270,14 @@ reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
 reg [1:0] card_core0_regs_fifo1_step_mode;
+reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
 reg card_core0_regs_fifo1_clear_error;
 reg card_core0_regs_fifo1_clear_position;
 reg card_core0_regs_fifo1_clear_stop;
+wire [1:0] card_core0_regs_fifo1_direct_busy;
 reg card_core0_regs_fifo1_direct_clear;
 reg card_core0_regs_fifo1_direct_mode;
 reg card_core0_regs_fifo1_direct_ready;
@@ -298,7 +302,6 @@ wire card_core0_regs_fifo1_out_active;
 reg card_core0_regs_fifo1_out_active_before;
 wire card_core0_regs_fifo1_out_ready;
 wire card_core0_regs_fifo1_outputs_busy;
-reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 wire card_core0_regs_fifo1_pulse_busy;
 reg card_core0_regs_fifo1_pulse_clear;
 reg card_core0_regs_fifo1_push;
@@ -330,9 +333,6 @@ reg [15:0] card_core0_regs_fifo1_ramp_step;
 reg card_core0_regs_fifo1_feed_held;
 reg card_core0_regs_fifo1_home_cut;
 reg card_core0_regs_fifo1_guard_stop_event;
-reg signed [31:0] card_core0_regs_fifo1_position_y;
-wire card_core0_regs_fifo1_direct_busy_x;
-wire card_core0_regs_fifo1_direct_busy_y;
 wire card_core0_regs_fifo1_dda_advance;
 wire card_core0_regs_fifo1_dda_busy;
 wire card_core0_regs_fifo1_requests_step_x;
@@ -494,15 +494,15 @@ wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word55_honoured;
+wire [5:0] card_core0_regs_fifo1_reg_word55_honoured;
 wire card_core0_regs_fifo1_reg_word55_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word55_shown;
+reg [5:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
 wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word55_written;
+reg [5:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word56_honoured;
@@ -795,6 +795,7 @@ reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse2_pending;
 wire card_core0_regs_fifo1_direct_pulse2_stepping;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
+wire card_core0_regs_fifo1_direct_pulse2_command_busy;
 reg card_core0_regs_fifo1_direct_pulse2_command_load;
 reg card_core0_regs_fifo1_direct_pulse2_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
@@ -808,10 +809,13 @@ reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap_operand;
 reg card_core0_regs_fifo1_direct_pulse3_pending;
 wire card_core0_regs_fifo1_direct_pulse3_stepping;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
+wire card_core0_regs_fifo1_direct_pulse3_command_busy;
 reg card_core0_regs_fifo1_direct_pulse3_command_load;
 reg card_core0_regs_fifo1_direct_pulse3_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
+wire card_core0_regs_fifo1_axis_block1_take;
+reg signed [31:0] card_core0_regs_fifo1_axis_block1__snapshot1_live;
 reg [2:0] card_core0_regs_fifo1_pulse_out1_count;
 wire [1:0] card_core0_regs_fifo1_pulse_out1_free_slot;
 wire [3:0] card_core0_regs_fifo1_pulse_out1_head;
@@ -904,6 +908,7 @@ reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
+wire [1:0] card_core0_regs_fifo1_pulse_source2_pulses_mask;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
@@ -1080,7 +1085,7 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037441;
+assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037442;
 assign card_core0_regs_fifo1_reg_word39_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word39_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
@@ -1107,6 +1112,9 @@ assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
+assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
+assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
+assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
 assign card_core0_regs_fifo1_requested[0] = card_core0_regs_fifo1_requests_step_x;
 assign card_core0_regs_fifo1_pulse_out1_levels[1] = card_core0_regs_fifo1_pulse_out1_axis_y_level;
@@ -1135,11 +1143,11 @@ assign card_core0_regs_fifo1_input_filter1_inputs_pins[1] = pins_limit_pos_x;
 assign card_core0_regs_fifo1_input_filter1_inputs_pins[0] = pins_estop;
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_input_register
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_input_register
     if (reset == 0) begin
-        pci_slave1_ad_q <= 0;
-        pci_slave1_idsel_q <= 0;
         pci_slave1_cbe_q <= 15;
+        pci_slave1_idsel_q <= 0;
+        pci_slave1_ad_q <= 0;
     end
     else begin
         pci_slave1_ad_q <= pci_ad_in;
@@ -1149,11 +1157,11 @@ always @(posedge clock, negedge reset) begin: pci_slave1_input_register
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_control_input_register
     if (reset == 0) begin
-        pci_slave1_frame_q <= 1;
-        pci_slave1_frame_qq <= 1;
         pci_slave1_irdy_q <= 1;
+        pci_slave1_frame_qq <= 1;
+        pci_slave1_frame_q <= 1;
     end
     else begin
         pci_slave1_frame_q <= pci_frame_in;
@@ -1161,6 +1169,66 @@ always @(posedge clock, negedge reset) begin: pci_slave1_control_input_register
         pci_slave1_irdy_q <= pci_irdy_in;
     end
 end
+
+
+always @(pci_slave1_read_source, pci_irdy_in, pci_slave1_trdy_q, pci_slave1_ad_out_q) begin: pci_slave1_pci_boundary1_ad_output
+    if ((pci_irdy_in && (!pci_slave1_trdy_q))) begin
+        pci_slave1_pci_boundary1_ad_out_next = pci_slave1_ad_out_q;
+    end
+    else begin
+        pci_slave1_pci_boundary1_ad_out_next = pci_slave1_read_source;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_bus_registers
+    if (reset == 0) begin
+        pci_slave1_devsel_q <= 1;
+        pci_perr_oe <= 0;
+        pci_slave1_perr_q <= 1;
+        pci_slave1_ad_parity_q <= 0;
+        pci_slave1_trdy_q <= 1;
+        pci_slave1_stop_q <= 1;
+        pci_stop_oe <= 0;
+        pci_serr_out <= 1;
+        pci_slave1_ad_out_q <= 0;
+        pci_ad_oe <= 0;
+        pci_inta_oe <= 0;
+        pci_devsel_oe <= 0;
+        pci_par_oe <= 0;
+        pci_inta_out <= 1;
+        pci_trdy_oe <= 0;
+        pci_slave1_parity_error_q <= 0;
+        pci_serr_oe <= 0;
+    end
+    else begin
+        pci_slave1_trdy_q <= pci_slave1_trdy_next;
+        pci_slave1_stop_q <= pci_slave1_stop_next;
+        pci_slave1_devsel_q <= pci_slave1_devsel_next;
+        pci_slave1_ad_out_q <= pci_slave1_pci_boundary1_ad_out_next;
+        pci_slave1_perr_q <= pci_slave1_perr_next;
+        pci_slave1_ad_parity_q <= pci_slave1_ad_out_parity;
+        pci_trdy_oe <= pci_slave1_drive_next;
+        pci_stop_oe <= pci_slave1_drive_next;
+        pci_devsel_oe <= pci_slave1_drive_next;
+        pci_ad_oe <= pci_slave1_ad_oe_next;
+        pci_par_oe <= pci_ad_oe;
+        pci_perr_oe <= pci_slave1_perr_oe_next;
+        pci_serr_out <= 1'b0;
+        pci_serr_oe <= pci_slave1_serr_oe_next;
+        pci_slave1_parity_error_q <= pci_slave1_parity_error_next;
+        pci_inta_out <= 1'b0;
+        pci_inta_oe <= (irq && (!pci_slave1_interrupt_disable));
+    end
+end
+
+
+
+assign pci_trdy_out = pci_slave1_trdy_q;
+assign pci_stop_out = pci_slave1_stop_q;
+assign pci_devsel_out = pci_slave1_devsel_q;
+assign pci_ad_out = pci_slave1_ad_out_q;
+assign pci_perr_out = pci_slave1_perr_q;
 
 
 always @(pci_slave1_cbe_q, pci_slave1_ad_q) begin: pci_slave1_pci_parity1_parity_check
@@ -1230,7 +1298,7 @@ always @(pci_slave1_bar2, pci_slave1_bar1, pci_slave1_mem_enable, pci_slave1_add
     io_hit = (pci_slave1_io_enable && ((code == 2) || (code == 3)) && (pci_slave1_ad_q[32-1:16] == 0) && (pci_slave1_ad_q[16-1:8] == pci_slave1_bar0[16-1:8]));
     mem_command = (pci_slave1_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
     mem_hit = (mem_command && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar1[32-1:12]));
-    alias_hit = (mem_command && (pci_slave1_ad_q[32-1:8] == pci_slave1_bar2[32-1:8]) && (!mem_hit));
+    alias_hit = (mem_command && (pci_slave1_ad_q[32-1:12] == pci_slave1_bar2[32-1:12]) && (!mem_hit));
     pci_slave1_claim = ((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     pci_slave1_claim_config = config_hit;
     pci_slave1_claim_io = io_hit;
@@ -1249,7 +1317,7 @@ always @(pci_slave1_cbe_q, pci_slave1_claim_alias, pci_slave1_ad_q) begin: pci_s
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
     end
     else if (pci_slave1_claim_alias) begin
-        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3f);
+        pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3ff);
     end
     else begin
         pci_slave1_start_addr = (pci_slave1_ad_q[(10 + 2)-1:2] & 10'h3ff);
@@ -1305,8 +1373,8 @@ always @(pci_slave1_ad_q, pci_slave1_req_addr, pci_slave1_first_pending, pci_sla
     first_open = (pci_slave1_first_pending && hold_state && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
     first = (first_open && (!bad));
     prefetch = ((pci_slave1_state == 4'b0110) && pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
-    pci_slave1_local_re = ((first && pci_slave1_is_read) || prefetch);
-    pci_slave1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
+    pci_slave1_pci_requests1_local_re = ((first && pci_slave1_is_read) || prefetch);
+    pci_slave1_pci_requests1_local_we = (drain || (first && (!pci_slave1_is_read) && (!pci_slave1_irdy_q)));
     pci_slave1_first_ready = (pci_slave1_first_pending && (!pci_slave1_is_config) && (!drain) && (!pci_slave1_req_addr_stale));
     pci_slave1_fetch_more = (pci_slave1_is_read && pci_slave1_fetching && (!pci_slave1_b_valid) && (pci_slave1_trdy_q || (!pci_slave1_frame_q)));
     pci_slave1_pci_requests1_local_space = (drain || pci_slave1_space_mem);
@@ -1329,12 +1397,12 @@ end
 
 
 assign pci_slave1_draining = (pci_slave1_h_valid || pci_slave1_wq_valid);
-assign pci_slave1_got = ((pci_slave1_local_re && pci_slave1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
-assign pci_slave1_accepted = (pci_slave1_local_we && pci_slave1_local_ready);
-assign pci_slave1_hold_got = (pci_slave1_first_ready && pci_slave1_is_read && pci_slave1_local_ready);
-assign pci_slave1_hold_accepted = (pci_slave1_first_ready && (!pci_slave1_is_read) && (!pci_slave1_irdy_q) && pci_slave1_local_ready);
-assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read || (!pci_slave1_irdy_q)) && pci_slave1_local_retry);
-assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_local_ready);
+assign pci_slave1_got = ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_ready) || ((pci_slave1_state == 4'b0001) && pci_slave1_is_read));
+assign pci_slave1_accepted = (pci_slave1_pci_requests1_local_we && pci_slave1_pci_requests1_local_ready);
+assign pci_slave1_hold_got = (pci_slave1_first_ready && pci_slave1_is_read && pci_slave1_pci_requests1_local_ready);
+assign pci_slave1_hold_accepted = (pci_slave1_first_ready && (!pci_slave1_is_read) && (!pci_slave1_irdy_q) && pci_slave1_pci_requests1_local_ready);
+assign pci_slave1_hold_retry = (pci_slave1_first_ready && (pci_slave1_is_read || (!pci_slave1_irdy_q)) && pci_slave1_pci_requests1_local_retry);
+assign pci_slave1_burst_got = (pci_slave1_fetch_more && pci_slave1_pci_requests1_local_ready);
 
 
 always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_slave1_spare_data, pci_slave1_local_rdata) begin: pci_slave1_read_path
@@ -1347,14 +1415,6 @@ always @(pci_slave1_is_config, pci_slave1_b_valid, pci_slave1_config_rdata, pci_
     else begin
         pci_slave1_read_source = pci_slave1_local_rdata;
     end
-end
-
-
-always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_first_phase, pci_slave1_initial_wait_over, pci_slave1_state, pci_slave1_trdy_q) begin: pci_slave1_latency
-    reg target_waits;
-    target_waits = (pci_slave1_trdy_q && pci_slave1_stop_q && (pci_slave1_state != 4'b0000) && (pci_slave1_state != 4'b0111) && (pci_slave1_state != 4'b1000));
-    pci_slave1_waiting = target_waits;
-    pci_slave1_timeout = (target_waits && ((pci_slave1_first_phase && pci_slave1_initial_wait_over) || ((!pci_slave1_first_phase) && pci_slave1_subsequent_wait_over)));
 end
 
 
@@ -1952,14 +2012,22 @@ wire pci_slave1_ad_oe_next_y0 = pci_slave1_pci_control1_control_case2_0_out_ad_o
 assign pci_slave1_ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (pci_slave1_ad_oe_next_y0 ? 1'b0 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_slave1_ad_oe_next_y0 ? 1'b1 : (pci_slave1_ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_phase_registers
+always @(pci_slave1_subsequent_wait_over, pci_slave1_stop_q, pci_slave1_initial_wait_over, pci_slave1_first_phase, pci_slave1_trdy_q, pci_slave1_state) begin: pci_slave1_pci_transaction1_latency
+    reg target_waits;
+    target_waits = (pci_slave1_trdy_q && pci_slave1_stop_q && (pci_slave1_state != 4'b0000) && (pci_slave1_state != 4'b0111) && (pci_slave1_state != 4'b1000));
+    pci_slave1_waiting = target_waits;
+    pci_slave1_timeout = (target_waits && ((pci_slave1_first_phase && pci_slave1_initial_wait_over) || ((!pci_slave1_first_phase) && pci_slave1_subsequent_wait_over)));
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_phase_registers
     if (reset == 0) begin
-        pci_slave1_before_last <= 0;
         pci_slave1_address_fault <= 0;
         pci_slave1_at_last <= 0;
-        pci_slave1_first_phase <= 0;
-        pci_slave1_state <= 4'b0000;
         pci_slave1_phase_addr <= 0;
+        pci_slave1_first_phase <= 0;
+        pci_slave1_before_last <= 0;
+        pci_slave1_state <= 4'b0000;
     end
     else begin
         pci_slave1_state <= pci_slave1_state_next;
@@ -1981,15 +2049,15 @@ always @(posedge clock, negedge reset) begin: pci_slave1_phase_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_transaction_kind
     if (reset == 0) begin
         pci_slave1_is_config <= 0;
-        pci_slave1_first_pending <= 0;
-        pci_slave1_space_mem <= 0;
-        pci_slave1_io_byte <= 0;
-        pci_slave1_single <= 0;
-        pci_slave1_is_read <= 0;
         pci_slave1_fetching <= 0;
+        pci_slave1_space_mem <= 0;
+        pci_slave1_first_pending <= 0;
+        pci_slave1_single <= 0;
+        pci_slave1_io_byte <= 0;
+        pci_slave1_is_read <= 0;
     end
     else begin
         if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase)) begin
@@ -2005,10 +2073,10 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
             if ((pci_slave1_got || pci_slave1_accepted)) begin
                 pci_slave1_first_pending <= (pci_slave1_first_pending && pci_slave1_draining);
             end
-            if ((pci_slave1_local_re && pci_slave1_local_ready && (pci_slave1_single || (pci_slave1_req_addr == 1023)))) begin
+            if ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_ready && (pci_slave1_single || (pci_slave1_req_addr == 1023)))) begin
                 pci_slave1_fetching <= 1'b0;
             end
-            if ((pci_slave1_local_re && pci_slave1_local_retry && (!pci_slave1_first_pending))) begin
+            if ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_retry && (!pci_slave1_first_pending))) begin
                 pci_slave1_fetching <= 1'b0;
             end
         end
@@ -2016,16 +2084,16 @@ always @(posedge clock, negedge reset) begin: pci_slave1_transaction_kind
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_request_address
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_request_address
     if (reset == 0) begin
-        pci_slave1_req_addr <= 0;
         pci_slave1_req_addr_stale <= 0;
+        pci_slave1_req_addr <= 0;
     end
     else begin
         if (pci_slave1_claim) begin
             pci_slave1_req_addr_stale <= pci_slave1_draining;
         end
-        if (((pci_slave1_local_re || pci_slave1_local_we) && pci_slave1_local_ready)) begin
+        if (((pci_slave1_pci_requests1_local_re || pci_slave1_pci_requests1_local_we) && pci_slave1_pci_requests1_local_ready)) begin
             pci_slave1_req_addr <= (pci_slave1_req_addr + 1);
         end
         else if (((pci_slave1_state == 4'b0000) && pci_slave1_address_phase && (!pci_slave1_draining))) begin
@@ -2040,7 +2108,7 @@ always @(posedge clock, negedge reset) begin: pci_slave1_request_address
 end
 
 
-always @(posedge clock, negedge reset) begin: pci_slave1_latency_count
+always @(posedge clock, negedge reset) begin: pci_slave1_pci_transaction1_latency_count
     if (reset == 0) begin
         pci_slave1_subsequent_wait_over <= 0;
         pci_slave1_wait_count <= 0;
@@ -2059,66 +2127,6 @@ always @(posedge clock, negedge reset) begin: pci_slave1_latency_count
         end
     end
 end
-
-
-always @(pci_slave1_read_source, pci_slave1_ad_out_q, pci_irdy_in, pci_slave1_trdy_q) begin: pci_slave1_ad_output
-    if ((pci_irdy_in && (!pci_slave1_trdy_q))) begin
-        pci_slave1_ad_out_next = pci_slave1_ad_out_q;
-    end
-    else begin
-        pci_slave1_ad_out_next = pci_slave1_read_source;
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: pci_slave1_bus_registers
-    if (reset == 0) begin
-        pci_trdy_oe <= 0;
-        pci_slave1_ad_parity_q <= 0;
-        pci_perr_oe <= 0;
-        pci_slave1_ad_out_q <= 0;
-        pci_stop_oe <= 0;
-        pci_serr_out <= 1;
-        pci_ad_oe <= 0;
-        pci_inta_oe <= 0;
-        pci_slave1_perr_q <= 1;
-        pci_devsel_oe <= 0;
-        pci_par_oe <= 0;
-        pci_slave1_parity_error_q <= 0;
-        pci_slave1_stop_q <= 1;
-        pci_inta_out <= 1;
-        pci_serr_oe <= 0;
-        pci_slave1_devsel_q <= 1;
-        pci_slave1_trdy_q <= 1;
-    end
-    else begin
-        pci_slave1_trdy_q <= pci_slave1_trdy_next;
-        pci_slave1_stop_q <= pci_slave1_stop_next;
-        pci_slave1_devsel_q <= pci_slave1_devsel_next;
-        pci_slave1_ad_out_q <= pci_slave1_ad_out_next;
-        pci_slave1_perr_q <= pci_slave1_perr_next;
-        pci_slave1_ad_parity_q <= pci_slave1_ad_out_parity;
-        pci_trdy_oe <= pci_slave1_drive_next;
-        pci_stop_oe <= pci_slave1_drive_next;
-        pci_devsel_oe <= pci_slave1_drive_next;
-        pci_ad_oe <= pci_slave1_ad_oe_next;
-        pci_par_oe <= pci_ad_oe;
-        pci_perr_oe <= pci_slave1_perr_oe_next;
-        pci_serr_out <= 1'b0;
-        pci_serr_oe <= pci_slave1_serr_oe_next;
-        pci_slave1_parity_error_q <= pci_slave1_parity_error_next;
-        pci_inta_out <= 1'b0;
-        pci_inta_oe <= (irq && (!pci_slave1_interrupt_disable));
-    end
-end
-
-
-
-assign pci_trdy_out = pci_slave1_trdy_q;
-assign pci_stop_out = pci_slave1_stop_q;
-assign pci_devsel_out = pci_slave1_devsel_q;
-assign pci_ad_out = pci_slave1_ad_out_q;
-assign pci_perr_out = pci_slave1_perr_q;
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_read_buffer
@@ -2188,14 +2196,14 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_buffers1_write_buff
             pci_slave1_h_data <= pci_slave1_ad_q;
             pci_slave1_h_be <= (~pci_slave1_cbe_q);
         end
-        if ((pci_slave1_local_re && pci_slave1_local_ready)) begin
+        if ((pci_slave1_pci_requests1_local_re && pci_slave1_pci_requests1_local_ready)) begin
             pci_slave1_spare_data <= pci_slave1_local_rdata;
         end
     end
 end
 
 
-always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_slave1_s_valid) begin: pci_slave1_pci_buffers1_posted_count
+always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_pci_requests1_local_ready, pci_slave1_s_valid) begin: pci_slave1_pci_buffers1_posted_count
     reg [2-1:0] held;
     held = 0;
     if (pci_slave1_h_valid) begin
@@ -2203,14 +2211,14 @@ always @(pci_slave1_h_valid, pci_slave1_wq_valid, pci_slave1_local_ready, pci_sl
         if (pci_slave1_s_valid) begin
             held = 2;
         end
-        if (pci_slave1_local_ready) begin
+        if (pci_slave1_pci_requests1_local_ready) begin
             held = (held - 1);
         end
         if (pci_slave1_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((pci_slave1_wq_valid && (!pci_slave1_local_ready))) begin
+    else if ((pci_slave1_wq_valid && (!pci_slave1_pci_requests1_local_ready))) begin
         held = 1;
     end
     pci_slave1_buffered_next = held;
@@ -2329,7 +2337,7 @@ always @(pci_slave1_pci_config1_signaled_system_error, pci_slave1_parity_respons
             pci_slave1_config_rdata = (pci_slave1_bar1 & 32'hfffff000);
         end
         'h6: begin
-            pci_slave1_config_rdata = (pci_slave1_bar2 & 32'hffffff00);
+            pci_slave1_config_rdata = (pci_slave1_bar2 & 32'hfffff000);
         end
         'hb: begin
             pci_slave1_config_rdata = 32'h11234;
@@ -2778,7 +2786,7 @@ assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 32);
+assign card_core0_regs_fifo1_reg_word47_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256));
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2800,7 +2808,7 @@ assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 36);
+assign card_core0_regs_fifo1_reg_word48_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (pci_slave1_pci_requests1_local_addr == 320));
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -3229,7 +3237,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word55_shown};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word55_shown};
 
 
 
@@ -3238,16 +3246,16 @@ assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
     if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[2-1:0];
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[6-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[6-1:0] & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[6-1:0];
 
 
 
@@ -3270,7 +3278,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 68);
+assign card_core0_regs_fifo1_reg_word56_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (pci_slave1_pci_requests1_local_addr == 260));
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3288,7 +3296,7 @@ assign card_core0_regs_fifo1_reg_word56_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 68);
+assign card_core0_regs_fifo1_reg_word56_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
 
 
 always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
@@ -3336,7 +3344,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 72);
+assign card_core0_regs_fifo1_reg_word57_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (pci_slave1_pci_requests1_local_addr == 324));
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3354,7 +3362,7 @@ assign card_core0_regs_fifo1_reg_word57_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 72);
+assign card_core0_regs_fifo1_reg_word57_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
 
 
 always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
@@ -3402,7 +3410,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = (pci_slave1_pci_requests1_local_addr == 76);
+assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (pci_slave1_pci_requests1_local_addr == 264));
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3420,7 +3428,7 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine_write = (card_core0_regs_fifo1_written_addr == 76);
+assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_written_addr == 264));
 
 
 
@@ -3466,7 +3474,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = (pci_slave1_pci_requests1_local_addr == 80);
+assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (pci_slave1_pci_requests1_local_addr == 328));
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3484,7 +3492,7 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine_write = (card_core0_regs_fifo1_written_addr == 80);
+assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_written_addr == 328));
 
 
 
@@ -5075,7 +5083,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_x = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
+assign card_core0_regs_fifo1_direct_pulse2_command_busy = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
 
 
 
@@ -5168,7 +5176,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_direct_busy_y = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
+assign card_core0_regs_fifo1_direct_pulse3_command_busy = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
 
 
 
@@ -5255,6 +5263,22 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
                 card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_gap != 1);
             end
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_axis_block1_take = (card_core0_regs_fifo1_io_read && ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256)));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_axis_block1__snapshot1_capture
+    if (reset == 0) begin
+        card_core0_regs_fifo1_pos_y_snapshot <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_axis_block1_take) begin
+            card_core0_regs_fifo1_pos_y_snapshot <= card_core0_regs_fifo1_axis_block1__snapshot1_live;
         end
     end
 end
@@ -5429,20 +5453,20 @@ end
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_pulse_out1_axis_y_count_position
     if (reset == 0) begin
-        card_core0_regs_fifo1_position_y <= 0;
+        card_core0_regs_fifo1_axis_block1__snapshot1_live <= 0;
     end
     else begin
         if (card_core0_regs_fifo1_clear_position) begin
-            card_core0_regs_fifo1_position_y <= 0;
+            card_core0_regs_fifo1_axis_block1__snapshot1_live <= 0;
         end
         else if (card_core0_regs_fifo1_home_zero[1]) begin
-            card_core0_regs_fifo1_position_y <= 0;
+            card_core0_regs_fifo1_axis_block1__snapshot1_live <= 0;
             if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
-                card_core0_regs_fifo1_position_y <= card_core0_regs_fifo1_pulse_out1_axis_y_delta;
+                card_core0_regs_fifo1_axis_block1__snapshot1_live <= card_core0_regs_fifo1_pulse_out1_axis_y_delta;
             end
         end
         else if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
-            card_core0_regs_fifo1_position_y <= (card_core0_regs_fifo1_position_y + card_core0_regs_fifo1_pulse_out1_axis_y_delta);
+            card_core0_regs_fifo1_axis_block1__snapshot1_live <= (card_core0_regs_fifo1_axis_block1__snapshot1_live + card_core0_regs_fifo1_pulse_out1_axis_y_delta);
         end
     end
 end
@@ -6075,7 +6099,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
 end
 
 
-always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
+always @(pci_slave1_pci_requests1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_be, pci_slave1_pci_requests1_local_space, pci_slave1_pci_requests1_local_we, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (pci_slave1_pci_requests1_local_be[0]) begin
@@ -6091,15 +6115,15 @@ always @(pci_slave1_local_re, card_core0_regs_fifo1_read_waited, card_core0_regs
         mask[32-1:24] = 255;
     end
     card_core0_regs_fifo1_byte_mask = mask;
-    card_core0_regs_fifo1_io_write = (pci_slave1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
-    card_core0_regs_fifo1_io_read = (pci_slave1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written) && (!card_core0_regs_fifo1_read_waited));
-    card_core0_regs_fifo1_push = (pci_slave1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_write = (pci_slave1_pci_requests1_local_we && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written));
+    card_core0_regs_fifo1_io_read = (pci_slave1_pci_requests1_local_re && (!pci_slave1_pci_requests1_local_space) && (!card_core0_regs_fifo1_io_written) && (!card_core0_regs_fifo1_read_waited));
+    card_core0_regs_fifo1_push = (pci_slave1_pci_requests1_local_we && pci_slave1_pci_requests1_local_space && (!card_core0_regs_fifo1_fifo_full) && (pci_slave1_pci_requests1_local_be != 0) && (!card_core0_regs_fifo1_io_written));
 end
 
 
 always @(card_core0_regs_fifo1_read_waited, card_core0_regs_fifo1_io_written, pci_slave1_pci_requests1_local_write, pci_slave1_pci_requests1_local_space, card_core0_regs_fifo1_read_word, card_core0_regs_fifo1_fifo_full) begin: card_core0_regs_fifo1_answer_bus
-    pci_slave1_local_ready = ((pci_slave1_pci_requests1_local_write || pci_slave1_pci_requests1_local_space || card_core0_regs_fifo1_read_waited) && (!card_core0_regs_fifo1_io_written) && (!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)));
-    pci_slave1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
+    pci_slave1_pci_requests1_local_ready = ((pci_slave1_pci_requests1_local_write || pci_slave1_pci_requests1_local_space || card_core0_regs_fifo1_read_waited) && (!card_core0_regs_fifo1_io_written) && (!(pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full)));
+    pci_slave1_pci_requests1_local_retry = (pci_slave1_pci_requests1_local_write && pci_slave1_pci_requests1_local_space && card_core0_regs_fifo1_fifo_full && (!card_core0_regs_fifo1_io_written));
     if (pci_slave1_pci_requests1_local_space) begin
         pci_slave1_local_rdata = 0;
     end
@@ -6188,24 +6212,12 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_befo
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_snapshot
-    if (reset == 0) begin
-        card_core0_regs_fifo1_pos_y_snapshot <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_read && (pci_slave1_pci_requests1_local_addr == 32))) begin
-            card_core0_regs_fifo1_pos_y_snapshot <= card_core0_regs_fifo1_position_y;
-        end
-    end
-end
 
-
-
-assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y);
+assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy != 0);
 assign card_core0_regs_fifo1_outputs_busy = ((card_core0_regs_fifo1_requested != 0) || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
-assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || card_core0_regs_fifo1_direct_busy_x || card_core0_regs_fifo1_direct_busy_y || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
+assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || (card_core0_regs_fifo1_direct_busy != 0) || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
 
 
 
@@ -6219,7 +6231,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word56_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6232,13 +6244,13 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
         card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word58__store42_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = card_core0_regs_fifo1_seq_load;
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1__axis_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word57_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6251,7 +6263,7 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_reg_wor
         card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word59__store43_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = card_core0_regs_fifo1_seq_load;
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
     end
 end

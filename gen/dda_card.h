@@ -6,7 +6,7 @@
 #define DDA_IO_BAR_SIZE 256u
 
 #define DDA_ID 0x00u
-#define DDA_ID_RESET 0xDDAC0201u
+#define DDA_ID_RESET 0xDDAC0202u
 #define DDA_ID_VERSION_SHIFT 0u
 #define DDA_ID_VERSION_MASK 0x0000FFFFu
 #define DDA_ID_MAGIC_SHIFT 16u
@@ -163,6 +163,14 @@
 #define DDA_DIR_POLARITY_X_MASK 0x00000001u
 #define DDA_DIR_POLARITY_Y_SHIFT 1u
 #define DDA_DIR_POLARITY_Y_MASK 0x00000002u
+#define DDA_DIR_POLARITY_Z_SHIFT 2u
+#define DDA_DIR_POLARITY_Z_MASK 0x00000004u
+#define DDA_DIR_POLARITY_A_SHIFT 3u
+#define DDA_DIR_POLARITY_A_MASK 0x00000008u
+#define DDA_DIR_POLARITY_B_SHIFT 4u
+#define DDA_DIR_POLARITY_B_MASK 0x00000010u
+#define DDA_DIR_POLARITY_C_SHIFT 5u
+#define DDA_DIR_POLARITY_C_MASK 0x00000020u
 
 #define DDA_PULSE_PERIOD_X 0x44u
 #define DDA_PULSE_PERIOD_X_RESET 0x00000002u
@@ -345,6 +353,35 @@
 #define DDA_STEP_MODE_MIN (0)
 #define DDA_STEP_MODE_MAX (2)
 
+/* Per-axis register blocks, BAR2 only: axis i (0 X, 1 Y, 2 Z, 3 A, 4 B, 5 C; BUILD.AXES of them)
+ * at BLOCK_BASE + STRIDE * i.  X's and Y's hold BAR0's registers (POS = POS_X / POS_Y, ...).
+ * A read of X's POS captures the other axes' POS: read it first. */
+#define DDA_AXIS_BLOCK_BASE 0x100u
+#define DDA_AXIS_STRIDE 0x40u
+#define DDA_AXIS_BLOCK(axis) (DDA_AXIS_BLOCK_BASE + DDA_AXIS_STRIDE * (unsigned)(axis))
+
+#define DDA_AXIS_POS 0x00u /* inside the block */
+#define DDA_AXIS_POS_OFFSET(axis) (DDA_AXIS_BLOCK(axis) + DDA_AXIS_POS)
+#define DDA_AXIS_POS_RESET 0x00000000u
+#define DDA_AXIS_POS_STEPS_SHIFT 0u
+#define DDA_AXIS_POS_STEPS_MASK 0xFFFFFFFFu
+
+#define DDA_AXIS_PULSE_PERIOD 0x04u /* inside the block */
+#define DDA_AXIS_PULSE_PERIOD_OFFSET(axis) (DDA_AXIS_BLOCK(axis) + DDA_AXIS_PULSE_PERIOD)
+#define DDA_AXIS_PULSE_PERIOD_RESET 0x00000002u
+#define DDA_AXIS_PULSE_PERIOD_CLOCKS_SHIFT 0u
+#define DDA_AXIS_PULSE_PERIOD_CLOCKS_MASK 0x0000FFFFu
+#define DDA_AXIS_PULSE_PERIOD_MIN (1)
+#define DDA_AXIS_PULSE_PERIOD_MAX (65535)
+
+#define DDA_AXIS_PULSE_COUNT 0x08u /* inside the block */
+#define DDA_AXIS_PULSE_COUNT_OFFSET(axis) (DDA_AXIS_BLOCK(axis) + DDA_AXIS_PULSE_COUNT)
+#define DDA_AXIS_PULSE_COUNT_RESET 0x00000000u
+#define DDA_AXIS_PULSE_COUNT_COUNT_SHIFT 0u
+#define DDA_AXIS_PULSE_COUNT_COUNT_MASK 0x00FFFFFFu
+#define DDA_AXIS_PULSE_COUNT_MIN (-8388608)
+#define DDA_AXIS_PULSE_COUNT_MAX (8388607)
+
 #define DDA_PCI_VENDOR_ID 0x1234u
 #define DDA_PCI_DEVICE_ID 0xDDA0u
 #define DDA_PCI_REVISION_ID 0x01u
@@ -353,7 +390,7 @@
 #define DDA_PCI_SUBSYSTEM_ID 0x0001u
 #define DDA_BAR0_SIZE 256u /* I/O: function registers */
 #define DDA_BAR1_SIZE 4096u /* memory: the command FIFO window */
-#define DDA_BAR2_SIZE 256u /* memory: the function registers again, at BAR0's offsets */
+#define DDA_BAR2_SIZE 4096u /* memory: the function registers at BAR0's offsets, then the per-axis blocks */
 #define DDA_FIFO_DEPTH 512u /* words */
 
 #define DDA_STOP_ESTOP 1u /* STOP_REASON.REASON */
@@ -361,8 +398,8 @@
 #define DDA_STOP_LIMIT 3u /* STOP_REASON.REASON */
 
 /* The simulated card's socket protocol (sim/card/card_server.py) */
-#define DDA_SIM_READ 1u /* a = BAR0 offset; answer: the register */
-#define DDA_SIM_WRITE 2u /* a = BAR0 offset, b = value; answer: 0 */
+#define DDA_SIM_READ 1u /* a = register offset: BAR0's, or beyond it BAR2's per-axis blocks; answer: the register */
+#define DDA_SIM_WRITE 2u /* a = register offset as READ's, b = value; answer: 0 */
 #define DDA_SIM_FIFO 3u /* a = word count, then the words (one burst into BAR1); answer: 0 */
 #define DDA_SIM_ADVANCE 4u /* a = card clocks; answer: card clocks since the server opened the card, low 32 bits */
 #define DDA_SIM_REQUEST_WORDS 3u

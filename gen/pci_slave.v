@@ -45,14 +45,15 @@ module pci_slave (
 // 
 // Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
 // ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-// bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
-// memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
+// bits (space 0: the registers, through BAR0, I/O, or BAR2, memory, which
+// holds them at BAR0's offsets and may be larger; space 1: BAR1, memory); ``irq`` level interrupt
 // request, drives INTA# unless Command.Interrupt Disable is set.
 // 
 // Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
 // subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-// bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
-// mem_bar_bits (BAR1 is
+// bytes), reg_bar_bits (BAR2 is 2**reg_bar_bits bytes, BAR0's size at
+// least: BAR0's registers at their offsets, the rest reaching the back end
+// too; a BAR0 under 16 bytes repeats in BAR2's 16), mem_bar_bits (BAR1 is
 // 2**mem_bar_bits bytes); device (how the
 // one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
 // defaults and ranges in ``models/parameters.py``;
@@ -148,6 +149,36 @@ input local_ready;
 input local_retry;
 input local_room;
 
+reg idsel_q;
+reg frame_q;
+reg frame_qq;
+reg irdy_q;
+wire [3:0] state_next;
+wire trdy_next;
+wire stop_next;
+wire devsel_next;
+wire drive_next;
+wire ad_oe_next;
+reg trdy_q;
+reg stop_q;
+reg devsel_q;
+reg [31:0] ad_out_q;
+reg ad_parity_q;
+reg perr_q;
+reg [3:0] state;
+reg is_read;
+reg space_mem;
+reg single;
+reg first_phase;
+reg first_pending;
+reg fetching;
+reg address_fault;
+reg [3:0] wait_count;
+reg initial_wait_over;
+reg subsequent_wait_over;
+reg [9:0] req_addr;
+reg req_addr_stale;
+reg [1:0] io_byte;
 reg wq_valid;
 reg h_valid;
 reg s_valid;
@@ -160,91 +191,61 @@ reg io_enable;
 reg mem_enable;
 reg parity_response;
 reg serr_enable;
+reg interrupt_disable;
 reg [15:0] bar0;
 reg [31:0] bar1;
 reg [31:0] bar2;
 reg fatal;
+reg parity_error_q;
+wire address_phase;
+reg ad_out_parity;
+wire perr_next;
+wire perr_oe_next;
+wire serr_oe_next;
+wire address_fault_next;
+wire parity_error_next;
+reg claim;
+reg claim_config;
+reg claim_io;
+reg claim_alias;
 reg read_command;
+wire first_phase_next;
+wire phase_step;
 wire write_done_next;
 wire config_write_next;
 wire posting;
 wire wq_valid_next;
 reg b_kept;
 wire b_valid_next;
+reg [9:0] start_addr;
+wire got;
+wire accepted;
 reg first_ready;
 reg fetch_more;
 wire hold_got;
 wire hold_accepted;
 wire hold_retry;
 wire burst_got;
-reg [1:0] buffered_next;
-wire accepted;
-wire ad_oe_next;
-reg [31:0] ad_out_next;
-reg ad_out_parity;
-reg [31:0] ad_out_q;
-reg ad_parity_q;
-reg [31:0] ad_q;
-reg address_fault;
-wire address_fault_next;
-wire address_phase;
-reg at_last;
-reg b_valid;
-reg before_last;
-reg [3:0] cbe_q;
-reg claim;
-reg claim_alias;
-reg claim_config;
-reg claim_io;
-wire devsel_next;
-reg devsel_q;
 wire draining;
-wire drive_next;
-reg fetching;
-reg first_pending;
-reg first_phase;
-wire first_phase_next;
-reg frame_q;
-reg frame_qq;
-wire got;
-reg idsel_q;
-reg initial_wait_over;
-reg interrupt_disable;
-reg [1:0] io_byte;
-reg irdy_q;
-reg is_config;
-reg is_read;
-wire parity_error_next;
-reg parity_error_q;
-wire perr_next;
-wire perr_oe_next;
-reg perr_q;
-reg [9:0] phase_addr;
-wire phase_step;
-reg [31:0] read_source;
-reg [9:0] req_addr;
-reg req_addr_stale;
-wire serr_oe_next;
-reg single;
-reg space_mem;
-reg [31:0] spare_data;
-reg [9:0] start_addr;
-reg [3:0] state;
-wire [3:0] state_next;
-wire stop_next;
-reg stop_q;
-reg subsequent_wait_over;
-reg timeout;
-wire trdy_next;
-reg trdy_q;
-reg [3:0] wait_count;
+reg [1:0] buffered_next;
 reg waiting;
+reg timeout;
+reg at_last;
+reg before_last;
+reg [31:0] ad_q;
+reg b_valid;
+reg [3:0] cbe_q;
+reg is_config;
+reg [9:0] phase_addr;
+reg [31:0] read_source;
+reg [31:0] spare_data;
 reg [31:0] config_rdata;
 wire [5:0] config_index;
 wire [31:0] config_data;
 wire [3:0] config_cbe_n;
 wire config_system_error;
 wire config_irq;
+reg [31:0] pci_boundary0_ad_out_next;
 reg pci_parity0_bus_parity;
 wire pci_parity0_perr_armed;
 wire pci_parity0_serr_armed;
@@ -283,11 +284,11 @@ reg pci_config0_signaled_target_abort;
 
 
 
-always @(posedge clock, negedge reset) begin: input_register
+always @(posedge clock, negedge reset) begin: pci_boundary0_input_register
     if (reset == 0) begin
-        ad_q <= 0;
-        idsel_q <= 0;
         cbe_q <= 15;
+        idsel_q <= 0;
+        ad_q <= 0;
     end
     else begin
         ad_q <= pci_ad_in;
@@ -297,11 +298,11 @@ always @(posedge clock, negedge reset) begin: input_register
 end
 
 
-always @(posedge clock, negedge reset) begin: control_input_register
+always @(posedge clock, negedge reset) begin: pci_boundary0_control_input_register
     if (reset == 0) begin
-        frame_q <= 1;
-        frame_qq <= 1;
         irdy_q <= 1;
+        frame_qq <= 1;
+        frame_q <= 1;
     end
     else begin
         frame_q <= pci_frame_in;
@@ -309,6 +310,66 @@ always @(posedge clock, negedge reset) begin: control_input_register
         irdy_q <= pci_irdy_in;
     end
 end
+
+
+always @(read_source, pci_irdy_in, trdy_q, ad_out_q) begin: pci_boundary0_ad_output
+    if ((pci_irdy_in && (!trdy_q))) begin
+        pci_boundary0_ad_out_next = ad_out_q;
+    end
+    else begin
+        pci_boundary0_ad_out_next = read_source;
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_boundary0_bus_registers
+    if (reset == 0) begin
+        devsel_q <= 1;
+        pci_perr_oe <= 0;
+        perr_q <= 1;
+        ad_parity_q <= 0;
+        trdy_q <= 1;
+        stop_q <= 1;
+        pci_stop_oe <= 0;
+        pci_serr_out <= 1;
+        ad_out_q <= 0;
+        pci_ad_oe <= 0;
+        pci_inta_oe <= 0;
+        pci_devsel_oe <= 0;
+        pci_par_oe <= 0;
+        pci_inta_out <= 1;
+        pci_trdy_oe <= 0;
+        parity_error_q <= 0;
+        pci_serr_oe <= 0;
+    end
+    else begin
+        trdy_q <= trdy_next;
+        stop_q <= stop_next;
+        devsel_q <= devsel_next;
+        ad_out_q <= pci_boundary0_ad_out_next;
+        perr_q <= perr_next;
+        ad_parity_q <= ad_out_parity;
+        pci_trdy_oe <= drive_next;
+        pci_stop_oe <= drive_next;
+        pci_devsel_oe <= drive_next;
+        pci_ad_oe <= ad_oe_next;
+        pci_par_oe <= pci_ad_oe;
+        pci_perr_oe <= perr_oe_next;
+        pci_serr_out <= 1'b0;
+        pci_serr_oe <= serr_oe_next;
+        parity_error_q <= parity_error_next;
+        pci_inta_out <= 1'b0;
+        pci_inta_oe <= (irq && (!interrupt_disable));
+    end
+end
+
+
+
+assign pci_trdy_out = trdy_q;
+assign pci_stop_out = stop_q;
+assign pci_devsel_out = devsel_q;
+assign pci_ad_out = ad_out_q;
+assign pci_perr_out = perr_q;
 
 
 always @(cbe_q, ad_q) begin: pci_parity0_parity_check
@@ -495,14 +556,6 @@ always @(is_config, b_valid, config_rdata, spare_data, local_rdata) begin: read_
     else begin
         read_source = local_rdata;
     end
-end
-
-
-always @(subsequent_wait_over, stop_q, first_phase, initial_wait_over, state, trdy_q) begin: latency
-    reg target_waits;
-    target_waits = (trdy_q && stop_q && (state != 4'b0000) && (state != 4'b0111) && (state != 4'b1000));
-    waiting = target_waits;
-    timeout = (target_waits && ((first_phase && initial_wait_over) || ((!first_phase) && subsequent_wait_over)));
 end
 
 
@@ -1100,14 +1153,22 @@ wire ad_oe_next_y0 = pci_control0_control_case2_out_ad_oe ^ pci_control0_control
 assign ad_oe_next = (pci_irdy_in ? (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (pci_frame_in ? (ad_oe_next_y0 ? 1'b0 : (ad_oe_next_x0 ? 1'b1 : 1'b0)) : (ad_oe_next_y0 ? 1'b1 : (ad_oe_next_x0 ? 1'b1 : 1'b0))));
 
 
-always @(posedge clock, negedge reset) begin: phase_registers
+always @(subsequent_wait_over, stop_q, initial_wait_over, first_phase, trdy_q, state) begin: pci_transaction0_latency
+    reg target_waits;
+    target_waits = (trdy_q && stop_q && (state != 4'b0000) && (state != 4'b0111) && (state != 4'b1000));
+    waiting = target_waits;
+    timeout = (target_waits && ((first_phase && initial_wait_over) || ((!first_phase) && subsequent_wait_over)));
+end
+
+
+always @(posedge clock, negedge reset) begin: pci_transaction0_phase_registers
     if (reset == 0) begin
-        before_last <= 0;
         address_fault <= 0;
         at_last <= 0;
-        first_phase <= 0;
-        state <= 4'b0000;
         phase_addr <= 0;
+        first_phase <= 0;
+        before_last <= 0;
+        state <= 4'b0000;
     end
     else begin
         state <= state_next;
@@ -1129,15 +1190,15 @@ always @(posedge clock, negedge reset) begin: phase_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: transaction_kind
+always @(posedge clock, negedge reset) begin: pci_transaction0_transaction_kind
     if (reset == 0) begin
         is_config <= 0;
-        first_pending <= 0;
-        space_mem <= 0;
-        io_byte <= 0;
-        single <= 0;
-        is_read <= 0;
         fetching <= 0;
+        space_mem <= 0;
+        first_pending <= 0;
+        single <= 0;
+        io_byte <= 0;
+        is_read <= 0;
     end
     else begin
         if (((state == 4'b0000) && address_phase)) begin
@@ -1164,10 +1225,10 @@ always @(posedge clock, negedge reset) begin: transaction_kind
 end
 
 
-always @(posedge clock, negedge reset) begin: request_address
+always @(posedge clock, negedge reset) begin: pci_transaction0_request_address
     if (reset == 0) begin
-        req_addr <= 0;
         req_addr_stale <= 0;
+        req_addr <= 0;
     end
     else begin
         if (claim) begin
@@ -1188,7 +1249,7 @@ always @(posedge clock, negedge reset) begin: request_address
 end
 
 
-always @(posedge clock, negedge reset) begin: latency_count
+always @(posedge clock, negedge reset) begin: pci_transaction0_latency_count
     if (reset == 0) begin
         subsequent_wait_over <= 0;
         wait_count <= 0;
@@ -1207,66 +1268,6 @@ always @(posedge clock, negedge reset) begin: latency_count
         end
     end
 end
-
-
-always @(read_source, ad_out_q, pci_irdy_in, trdy_q) begin: ad_output
-    if ((pci_irdy_in && (!trdy_q))) begin
-        ad_out_next = ad_out_q;
-    end
-    else begin
-        ad_out_next = read_source;
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: bus_registers
-    if (reset == 0) begin
-        pci_trdy_oe <= 0;
-        ad_parity_q <= 0;
-        pci_perr_oe <= 0;
-        ad_out_q <= 0;
-        pci_stop_oe <= 0;
-        pci_serr_out <= 1;
-        pci_ad_oe <= 0;
-        pci_inta_oe <= 0;
-        perr_q <= 1;
-        pci_devsel_oe <= 0;
-        pci_par_oe <= 0;
-        parity_error_q <= 0;
-        stop_q <= 1;
-        pci_inta_out <= 1;
-        pci_serr_oe <= 0;
-        devsel_q <= 1;
-        trdy_q <= 1;
-    end
-    else begin
-        trdy_q <= trdy_next;
-        stop_q <= stop_next;
-        devsel_q <= devsel_next;
-        ad_out_q <= ad_out_next;
-        perr_q <= perr_next;
-        ad_parity_q <= ad_out_parity;
-        pci_trdy_oe <= drive_next;
-        pci_stop_oe <= drive_next;
-        pci_devsel_oe <= drive_next;
-        pci_ad_oe <= ad_oe_next;
-        pci_par_oe <= pci_ad_oe;
-        pci_perr_oe <= perr_oe_next;
-        pci_serr_out <= 1'b0;
-        pci_serr_oe <= serr_oe_next;
-        parity_error_q <= parity_error_next;
-        pci_inta_out <= 1'b0;
-        pci_inta_oe <= (irq && (!interrupt_disable));
-    end
-end
-
-
-
-assign pci_trdy_out = trdy_q;
-assign pci_stop_out = stop_q;
-assign pci_devsel_out = devsel_q;
-assign pci_ad_out = ad_out_q;
-assign pci_perr_out = perr_q;
 
 
 always @(posedge clock, negedge reset) begin: pci_buffers0_read_buffer

@@ -56,8 +56,10 @@ module regs_fifo (
 );
 // The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 // 
-// Ports: ``local`` (the target's back end; I/O BAR = the registers of
-// ``models/registers.py``, memory BAR = the FIFO: every data phase with a byte
+// Ports: ``local`` (the target's back end; space 0 = the registers of
+// ``models/registers.py``: BAR0's at their offsets, beyond them BAR2's
+// per-axis blocks, X's and Y's answered by BAR0's register words
+// (``reg_word``'s ``aliases``); space 1 = the FIFO: every data phase with a byte
 // enabled pushes one word; ``local.room`` is high while the FIFO has
 // three free places, the promise the target needs before it acknowledges
 // a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -69,7 +71,9 @@ module regs_fifo (
 // outputs and resets the DDA; the FIFO keeps its words until
 // COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
 // INTA#: INT_STATUS & INT_ENABLE, from ``status_words``, which also
-// assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
+// assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y;
+// ``axis_block`` holds the positions a POS_X read captures); every axis
+// has its direct pulses (``pulse_source``, ``direct_pulse``);
 // ``core_clear`` (one registered clock on
 // COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
 // Parameters (``models/parameters.py``): ``fifo_depth`` (words, a power of
@@ -84,7 +88,7 @@ module regs_fifo (
 // later, and a request in that clock waits one clock (PCI never asks that
 // soon); an I/O read waits one clock: the registers' read chain ends in a
 // register (``read_word``), so the PCI target's AD register is fed from a
-// flip-flop, and a read's side effect (POS_X holds POS_Y) happens once, at
+// flip-flop, and a read's side effect (POS_X captures the other axes' POS) happens once, at
 // the edge that takes the word; ``room`` is the FIFO's own flag (three
 // places free or more):
 //     clock    _/~\_/~\_/~\_/~\_
@@ -178,12 +182,14 @@ reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
 reg [1:0] step_mode;
+reg signed [31:0] pos_y_snapshot;
 reg [23:0] watchdog_left;
 wire any_busy;
 reg [31:0] byte_mask;
 reg clear_error;
 reg clear_position;
 reg clear_stop;
+wire [1:0] direct_busy;
 reg direct_clear;
 reg direct_mode;
 reg direct_ready;
@@ -208,7 +214,6 @@ wire out_active;
 reg out_active_before;
 wire out_ready;
 wire outputs_busy;
-reg signed [31:0] pos_y_snapshot;
 wire pulse_busy;
 reg pulse_clear;
 reg push;
@@ -240,9 +245,6 @@ reg [15:0] ramp_step;
 reg feed_held;
 reg home_cut;
 reg guard_stop_event;
-reg signed [31:0] position_y;
-wire direct_busy_x;
-wire direct_busy_y;
 wire requests_step_x;
 reg direct_request_x;
 wire requests_step_y;
@@ -398,15 +400,15 @@ wire [31:0] reg_word15_shown_wide;
 reg [31:0] reg_word15_written;
 reg [31:0] reg_word15_chain_out_data;
 wire reg_word15_chain_out_clamped;
-wire [1:0] reg_word16_honoured;
+wire [5:0] reg_word16_honoured;
 wire reg_word16_out_of_range;
-reg [1:0] reg_word16_shown;
+reg [5:0] reg_word16_shown;
 reg reg_word16_clamped;
 wire reg_word16_mine;
 wire reg_word16_mine_write;
 wire reg_word16_set_mine;
 wire [31:0] reg_word16_shown_wide;
-reg [1:0] reg_word16_written;
+reg [5:0] reg_word16_written;
 reg [31:0] reg_word16_chain_out_data;
 wire reg_word16_chain_out_clamped;
 reg [15:0] reg_word17_honoured;
@@ -684,6 +686,7 @@ reg [15:0] direct_pulse0_gap_operand;
 reg direct_pulse0_pending;
 wire direct_pulse0_stepping;
 reg direct_pulse0_waiting;
+wire direct_pulse0_command_busy;
 reg direct_pulse0_command_load;
 reg direct_pulse0_command_retarget;
 reg signed [23:0] direct_pulse0_command_count;
@@ -697,10 +700,13 @@ reg [15:0] direct_pulse1_gap_operand;
 reg direct_pulse1_pending;
 wire direct_pulse1_stepping;
 reg direct_pulse1_waiting;
+wire direct_pulse1_command_busy;
 reg direct_pulse1_command_load;
 reg direct_pulse1_command_retarget;
 reg signed [23:0] direct_pulse1_command_count;
 reg [15:0] direct_pulse1_command_period;
+wire axis_block0_take;
+reg signed [31:0] axis_block0__snapshot0_live;
 reg [2:0] pulse_out0_count;
 wire [1:0] pulse_out0_free_slot;
 wire [3:0] pulse_out0_head;
@@ -793,6 +799,7 @@ reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
 reg homing0_port_retarget;
 reg homing0_port_ended;
+wire [1:0] pulse_source0_pulses_mask;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
 reg status_words0_error_before;
@@ -800,7 +807,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037441;
+assign reg_word0_shown = 32'd3719037442;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -827,6 +834,9 @@ assign reg_word34_set_mine = 1'd0;
 assign reg_word35_set_mine = 1'd0;
 assign reg_word36_set_mine = 1'd0;
 assign reg_word38_set_mine = 1'd0;
+assign pulse_source0_pulses_mask = 2'd3;
+assign direct_busy[1] = direct_pulse1_command_busy;
+assign direct_busy[0] = direct_pulse0_command_busy;
 assign requested[1] = requests_step_y;
 assign requested[0] = requests_step_x;
 assign pulse_out0_levels[1] = pulse_out0_axis_y_level;
@@ -1277,7 +1287,7 @@ assign reg_word7_chain_out_clamped = reg_word6_chain_out_clamped;
 
 
 
-assign reg_word8_mine = (local_addr == 32);
+assign reg_word8_mine = ((local_addr == 32) || (local_addr == 256));
 
 
 always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_chain_out_data) begin: reg_word8_read_chain
@@ -1299,7 +1309,7 @@ assign reg_word8_chain_out_clamped = reg_word7_chain_out_clamped;
 
 
 
-assign reg_word9_mine = (local_addr == 36);
+assign reg_word9_mine = ((local_addr == 36) || (local_addr == 320));
 
 
 always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_chain_out_data) begin: reg_word9_read_chain
@@ -1728,7 +1738,7 @@ end
 
 
 
-assign reg_word16_shown_wide = {30'h0, reg_word16_shown};
+assign reg_word16_shown_wide = {26'h0, reg_word16_shown};
 
 
 
@@ -1737,16 +1747,16 @@ assign reg_word16_mine_write = (written_addr == 64);
 
 always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word16_merge_bytes
     if ((reg_word16_set_mine && (set_index == 0))) begin
-        reg_word16_written = set_value[2-1:0];
+        reg_word16_written = set_value[6-1:0];
     end
     else begin
-        reg_word16_written = ((reg_word16_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
+        reg_word16_written = ((reg_word16_shown_wide[6-1:0] & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
     end
 end
 
 
 
-assign reg_word16_honoured = reg_word16_written[2-1:0];
+assign reg_word16_honoured = reg_word16_written[6-1:0];
 
 
 
@@ -1769,7 +1779,7 @@ end
 
 
 
-assign reg_word17_mine = (local_addr == 68);
+assign reg_word17_mine = ((local_addr == 68) || (local_addr == 260));
 
 
 always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_chain_out_data) begin: reg_word17_read_chain
@@ -1787,7 +1797,7 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 
 
 
-assign reg_word17_mine_write = (written_addr == 68);
+assign reg_word17_mine_write = ((written_addr == 68) || (written_addr == 260));
 
 
 always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word17_merge_bytes
@@ -1835,7 +1845,7 @@ end
 
 
 
-assign reg_word18_mine = (local_addr == 72);
+assign reg_word18_mine = ((local_addr == 72) || (local_addr == 324));
 
 
 always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_chain_out_data) begin: reg_word18_read_chain
@@ -1853,7 +1863,7 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 
 
 
-assign reg_word18_mine_write = (written_addr == 72);
+assign reg_word18_mine_write = ((written_addr == 72) || (written_addr == 324));
 
 
 always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word18_merge_bytes
@@ -1901,7 +1911,7 @@ end
 
 
 
-assign reg_word19_mine = (local_addr == 76);
+assign reg_word19_mine = ((local_addr == 76) || (local_addr == 264));
 
 
 always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_chain_out_data) begin: reg_word19_read_chain
@@ -1919,7 +1929,7 @@ assign reg_word19_shown_wide = {8'h0, reg_word19_shown};
 
 
 
-assign reg_word19_mine_write = (written_addr == 76);
+assign reg_word19_mine_write = ((written_addr == 76) || (written_addr == 264));
 
 
 
@@ -1965,7 +1975,7 @@ end
 
 
 
-assign reg_word20_mine = (local_addr == 80);
+assign reg_word20_mine = ((local_addr == 80) || (local_addr == 328));
 
 
 always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_chain_out_data) begin: reg_word20_read_chain
@@ -1983,7 +1993,7 @@ assign reg_word20_shown_wide = {8'h0, reg_word20_shown};
 
 
 
-assign reg_word20_mine_write = (written_addr == 80);
+assign reg_word20_mine_write = ((written_addr == 80) || (written_addr == 328));
 
 
 
@@ -3574,7 +3584,7 @@ end
 
 
 
-assign direct_busy_x = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
+assign direct_pulse0_command_busy = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
 
 
 
@@ -3667,7 +3677,7 @@ end
 
 
 
-assign direct_busy_y = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
+assign direct_pulse1_command_busy = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
 
 
 
@@ -3754,6 +3764,22 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
                 direct_pulse1_gap <= direct_pulse1_gap_less;
                 direct_pulse1_waiting <= (direct_pulse1_gap != 1);
             end
+        end
+    end
+end
+
+
+
+assign axis_block0_take = (io_read && ((local_addr == 32) || (local_addr == 256)));
+
+
+always @(posedge clock, negedge reset) begin: axis_block0__snapshot0_capture
+    if (reset == 0) begin
+        pos_y_snapshot <= 0;
+    end
+    else begin
+        if (axis_block0_take) begin
+            pos_y_snapshot <= axis_block0__snapshot0_live;
         end
     end
 end
@@ -3928,20 +3954,20 @@ end
 
 always @(posedge clock, negedge reset) begin: pulse_out0_axis_y_count_position
     if (reset == 0) begin
-        position_y <= 0;
+        axis_block0__snapshot0_live <= 0;
     end
     else begin
         if (clear_position) begin
-            position_y <= 0;
+            axis_block0__snapshot0_live <= 0;
         end
         else if (home_zero[1]) begin
-            position_y <= 0;
+            axis_block0__snapshot0_live <= 0;
             if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
-                position_y <= pulse_out0_axis_y_delta;
+                axis_block0__snapshot0_live <= pulse_out0_axis_y_delta;
             end
         end
         else if ((pulse_out0_axis_y_level && (!pulse_out0_axis_y_pulse))) begin
-            position_y <= (position_y + pulse_out0_axis_y_delta);
+            axis_block0__snapshot0_live <= (axis_block0__snapshot0_live + pulse_out0_axis_y_delta);
         end
     end
 end
@@ -4687,24 +4713,12 @@ always @(posedge clock, negedge reset) begin: outputs_before
 end
 
 
-always @(posedge clock, negedge reset) begin: snapshot
-    if (reset == 0) begin
-        pos_y_snapshot <= 0;
-    end
-    else begin
-        if ((io_read && (local_addr == 32))) begin
-            pos_y_snapshot <= position_y;
-        end
-    end
-end
 
-
-
-assign pulse_busy = (direct_busy_x || direct_busy_y);
+assign pulse_busy = (direct_busy != 0);
 assign outputs_busy = ((requested != 0) || requested_before || out_active_before);
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
-assign any_busy = (seq_busy || direct_busy_x || direct_busy_y || out_active || dda_busy || home_busy);
+assign any_busy = (seq_busy || (direct_busy != 0) || out_active || dda_busy || home_busy);
 
 
 
@@ -4718,7 +4732,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, seq_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: _axis_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 0));
     if (home_busy) begin
@@ -4731,13 +4745,13 @@ always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_wor
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
-        direct_pulse0_command_load = seq_load;
+        direct_pulse0_command_load = (seq_load && pulse_source0_pulses_mask[0]);
         direct_pulse0_command_count = sequencer0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, seq_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: _axis_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 1));
     if (home_busy) begin
@@ -4750,7 +4764,7 @@ always @(homing0_port_count, reg_word31_shown[0], homing0_port_retarget, reg_wor
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
-        direct_pulse1_command_load = seq_load;
+        direct_pulse1_command_load = (seq_load && pulse_source0_pulses_mask[1]);
         direct_pulse1_command_count = sequencer0_pulses_count_y;
     end
 end

@@ -111,6 +111,35 @@ reg pci_pads0_registered_pad4_enable;
 wire [3:0] pci_pads0_registered_pad5_from_pin;
 wire pci_pads0_registered_pad6_from_pin;
 wire card1_irq;
+reg card1_pci_slave2_frame_q;
+reg card1_pci_slave2_frame_qq;
+reg card1_pci_slave2_irdy_q;
+wire [3:0] card1_pci_slave2_state_next;
+wire card1_pci_slave2_trdy_next;
+wire card1_pci_slave2_stop_next;
+wire card1_pci_slave2_devsel_next;
+wire card1_pci_slave2_drive_next;
+wire card1_pci_slave2_ad_oe_next;
+reg card1_pci_slave2_trdy_q;
+reg card1_pci_slave2_stop_q;
+reg card1_pci_slave2_devsel_q;
+reg [31:0] card1_pci_slave2_ad_out_q;
+reg card1_pci_slave2_ad_parity_q;
+reg card1_pci_slave2_perr_q;
+reg [3:0] card1_pci_slave2_state;
+reg card1_pci_slave2_is_read;
+reg card1_pci_slave2_space_mem;
+reg card1_pci_slave2_single;
+reg card1_pci_slave2_first_phase;
+reg card1_pci_slave2_first_pending;
+reg card1_pci_slave2_fetching;
+reg card1_pci_slave2_address_fault;
+reg [3:0] card1_pci_slave2_wait_count;
+reg card1_pci_slave2_initial_wait_over;
+reg card1_pci_slave2_subsequent_wait_over;
+reg [9:0] card1_pci_slave2_req_addr;
+reg card1_pci_slave2_req_addr_stale;
+reg [1:0] card1_pci_slave2_io_byte;
 reg card1_pci_slave2_wq_valid;
 reg card1_pci_slave2_h_valid;
 reg card1_pci_slave2_s_valid;
@@ -123,101 +152,104 @@ reg card1_pci_slave2_io_enable;
 reg card1_pci_slave2_mem_enable;
 reg card1_pci_slave2_parity_response;
 reg card1_pci_slave2_serr_enable;
+reg card1_pci_slave2_interrupt_disable;
 reg [15:0] card1_pci_slave2_bar0;
 reg [31:0] card1_pci_slave2_bar1;
 reg [31:0] card1_pci_slave2_bar2;
 reg card1_pci_slave2_fatal;
+reg card1_pci_slave2_parity_error_q;
+wire card1_pci_slave2_address_phase;
+reg card1_pci_slave2_ad_out_parity;
+wire card1_pci_slave2_perr_next;
+wire card1_pci_slave2_perr_oe_next;
+wire card1_pci_slave2_serr_oe_next;
+wire card1_pci_slave2_address_fault_next;
+wire card1_pci_slave2_parity_error_next;
+reg card1_pci_slave2_claim;
+reg card1_pci_slave2_claim_config;
+reg card1_pci_slave2_claim_io;
+reg card1_pci_slave2_claim_alias;
 reg card1_pci_slave2_read_command;
+wire card1_pci_slave2_first_phase_next;
+wire card1_pci_slave2_phase_step;
 wire card1_pci_slave2_write_done_next;
 wire card1_pci_slave2_config_write_next;
 wire card1_pci_slave2_posting;
 wire card1_pci_slave2_wq_valid_next;
 reg card1_pci_slave2_b_kept;
 wire card1_pci_slave2_b_valid_next;
+reg [9:0] card1_pci_slave2_start_addr;
+wire card1_pci_slave2_got;
+wire card1_pci_slave2_accepted;
 reg card1_pci_slave2_first_ready;
 reg card1_pci_slave2_fetch_more;
 wire card1_pci_slave2_hold_got;
 wire card1_pci_slave2_hold_accepted;
 wire card1_pci_slave2_hold_retry;
 wire card1_pci_slave2_burst_got;
-reg [1:0] card1_pci_slave2_buffered_next;
-wire card1_pci_slave2_accepted;
-wire card1_pci_slave2_ad_oe_next;
-wire [31:0] card1_pci_slave2_ad_out_next;
-reg card1_pci_slave2_ad_out_parity;
-reg [31:0] card1_pci_slave2_ad_out_q;
-reg card1_pci_slave2_ad_parity_q;
-reg card1_pci_slave2_address_fault;
-wire card1_pci_slave2_address_fault_next;
-wire card1_pci_slave2_address_phase;
-reg card1_pci_slave2_at_last;
-reg card1_pci_slave2_b_valid;
-reg card1_pci_slave2_before_last;
-reg card1_pci_slave2_claim;
-reg card1_pci_slave2_claim_alias;
-reg card1_pci_slave2_claim_config;
-reg card1_pci_slave2_claim_io;
-wire card1_pci_slave2_devsel_next;
-reg card1_pci_slave2_devsel_q;
 wire card1_pci_slave2_draining;
-wire card1_pci_slave2_drive_next;
-reg card1_pci_slave2_fetching;
-reg card1_pci_slave2_first_pending;
-reg card1_pci_slave2_first_phase;
-wire card1_pci_slave2_first_phase_next;
-reg card1_pci_slave2_frame_q;
-reg card1_pci_slave2_frame_qq;
-wire card1_pci_slave2_got;
-reg card1_pci_slave2_initial_wait_over;
-reg card1_pci_slave2_interrupt_disable;
-reg [1:0] card1_pci_slave2_io_byte;
-reg card1_pci_slave2_irdy_q;
-reg card1_pci_slave2_is_config;
-reg card1_pci_slave2_is_read;
-wire card1_pci_slave2_parity_error_next;
-reg card1_pci_slave2_parity_error_q;
-wire card1_pci_slave2_perr_next;
-wire card1_pci_slave2_perr_oe_next;
-reg card1_pci_slave2_perr_q;
-reg [9:0] card1_pci_slave2_phase_addr;
-wire card1_pci_slave2_phase_step;
-reg [31:0] card1_pci_slave2_read_source;
-reg [9:0] card1_pci_slave2_req_addr;
-reg card1_pci_slave2_req_addr_stale;
-wire card1_pci_slave2_serr_oe_next;
-reg card1_pci_slave2_single;
-reg card1_pci_slave2_space_mem;
-reg [31:0] card1_pci_slave2_spare_data;
-reg [9:0] card1_pci_slave2_start_addr;
-reg [3:0] card1_pci_slave2_state;
-wire [3:0] card1_pci_slave2_state_next;
-wire card1_pci_slave2_stop_next;
-reg card1_pci_slave2_stop_q;
-reg card1_pci_slave2_subsequent_wait_over;
-reg card1_pci_slave2_timeout;
-wire card1_pci_slave2_trdy_next;
-reg card1_pci_slave2_trdy_q;
-reg [3:0] card1_pci_slave2_wait_count;
+reg [1:0] card1_pci_slave2_buffered_next;
 reg card1_pci_slave2_waiting;
+reg card1_pci_slave2_timeout;
+reg card1_pci_slave2_at_last;
+reg card1_pci_slave2_before_last;
+reg card1_pci_slave2_b_valid;
+reg card1_pci_slave2_is_config;
+reg [9:0] card1_pci_slave2_phase_addr;
+reg [31:0] card1_pci_slave2_read_source;
+reg [31:0] card1_pci_slave2_spare_data;
 reg [31:0] card1_pci_slave2_config_rdata;
 reg [31:0] card1_pci_slave2_local_rdata;
-reg card1_pci_slave2_local_re;
-reg card1_pci_slave2_local_ready;
-reg card1_pci_slave2_local_retry;
-reg card1_pci_slave2_local_we;
 wire [5:0] card1_pci_slave2_config_index;
 wire [31:0] card1_pci_slave2_config_data;
 wire [3:0] card1_pci_slave2_config_cbe_n;
 wire card1_pci_slave2_config_system_error;
 wire card1_pci_slave2_config_irq;
+wire [31:0] card1_pci_slave2_pci_boundary2_ad_out_next;
+wire card1_pci_slave2_pci_boundary2_pin_lut22_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut23_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut24_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut25_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut26_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut27_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut28_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut29_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut30_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut31_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut32_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut33_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut34_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut35_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut36_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut37_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut38_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut39_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut40_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut41_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut42_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut43_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut44_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut45_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut46_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut47_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut48_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut49_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut50_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut51_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut52_out;
+wire card1_pci_slave2_pci_boundary2_pin_lut53_out;
 reg card1_pci_slave2_pci_parity2_bus_parity;
 wire card1_pci_slave2_pci_parity2_perr_armed;
 wire card1_pci_slave2_pci_parity2_serr_armed;
+reg card1_pci_slave2_pci_requests2_local_re;
+reg card1_pci_slave2_pci_requests2_local_we;
 reg card1_pci_slave2_pci_requests2_local_space;
 reg card1_pci_slave2_pci_requests2_local_write;
 reg [31:0] card1_pci_slave2_pci_requests2_local_wdata;
 reg [3:0] card1_pci_slave2_pci_requests2_local_be;
 reg [11:0] card1_pci_slave2_pci_requests2_local_addr;
+reg card1_pci_slave2_pci_requests2_local_ready;
+reg card1_pci_slave2_pci_requests2_local_retry;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_exhausted;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_last_data;
 reg card1_pci_slave2_pci_control2_control_case0_0_1_ready_for_phase;
@@ -246,38 +278,6 @@ reg card1_pci_slave2_pci_control2_control_case2_0_1_out_stop;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_devsel;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_drive;
 reg card1_pci_slave2_pci_control2_control_case2_0_1_out_ad_oe;
-wire card1_pci_slave2_pin_lut33_out;
-wire card1_pci_slave2_pin_lut34_out;
-wire card1_pci_slave2_pin_lut35_out;
-wire card1_pci_slave2_pin_lut36_out;
-wire card1_pci_slave2_pin_lut37_out;
-wire card1_pci_slave2_pin_lut38_out;
-wire card1_pci_slave2_pin_lut39_out;
-wire card1_pci_slave2_pin_lut40_out;
-wire card1_pci_slave2_pin_lut41_out;
-wire card1_pci_slave2_pin_lut42_out;
-wire card1_pci_slave2_pin_lut43_out;
-wire card1_pci_slave2_pin_lut44_out;
-wire card1_pci_slave2_pin_lut45_out;
-wire card1_pci_slave2_pin_lut46_out;
-wire card1_pci_slave2_pin_lut47_out;
-wire card1_pci_slave2_pin_lut48_out;
-wire card1_pci_slave2_pin_lut49_out;
-wire card1_pci_slave2_pin_lut50_out;
-wire card1_pci_slave2_pin_lut51_out;
-wire card1_pci_slave2_pin_lut52_out;
-wire card1_pci_slave2_pin_lut53_out;
-wire card1_pci_slave2_pin_lut54_out;
-wire card1_pci_slave2_pin_lut55_out;
-wire card1_pci_slave2_pin_lut56_out;
-wire card1_pci_slave2_pin_lut57_out;
-wire card1_pci_slave2_pin_lut58_out;
-wire card1_pci_slave2_pin_lut59_out;
-wire card1_pci_slave2_pin_lut60_out;
-wire card1_pci_slave2_pin_lut61_out;
-wire card1_pci_slave2_pin_lut62_out;
-wire card1_pci_slave2_pin_lut63_out;
-wire card1_pci_slave2_pin_lut64_out;
 wire [15:0] card1_pci_slave2_pci_config2_bar0_read;
 reg card1_pci_slave2_pci_config2_detected_parity_error;
 reg [7:0] card1_pci_slave2_pci_config2_interrupt_line;
@@ -293,12 +293,14 @@ reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
 reg [1:0] card1_card_core1_regs_fifo2_step_mode;
+reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 reg card1_card_core1_regs_fifo2_clear_error;
 reg card1_card_core1_regs_fifo2_clear_position;
 reg card1_card_core1_regs_fifo2_clear_stop;
+wire [1:0] card1_card_core1_regs_fifo2_direct_busy;
 reg card1_card_core1_regs_fifo2_direct_clear;
 reg card1_card_core1_regs_fifo2_direct_mode;
 reg card1_card_core1_regs_fifo2_direct_ready;
@@ -323,7 +325,6 @@ wire card1_card_core1_regs_fifo2_out_active;
 reg card1_card_core1_regs_fifo2_out_active_before;
 wire card1_card_core1_regs_fifo2_out_ready;
 wire card1_card_core1_regs_fifo2_outputs_busy;
-reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 wire card1_card_core1_regs_fifo2_pulse_busy;
 reg card1_card_core1_regs_fifo2_pulse_clear;
 reg card1_card_core1_regs_fifo2_push;
@@ -355,9 +356,6 @@ reg [15:0] card1_card_core1_regs_fifo2_ramp_step;
 reg card1_card_core1_regs_fifo2_feed_held;
 reg card1_card_core1_regs_fifo2_home_cut;
 reg card1_card_core1_regs_fifo2_guard_stop_event;
-reg signed [31:0] card1_card_core1_regs_fifo2_position_y;
-wire card1_card_core1_regs_fifo2_direct_busy_x;
-wire card1_card_core1_regs_fifo2_direct_busy_y;
 wire card1_card_core1_regs_fifo2_dda_advance;
 wire card1_card_core1_regs_fifo2_dda_busy;
 wire card1_card_core1_regs_fifo2_requests_step_x;
@@ -519,15 +517,15 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
+wire [5:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
 wire card1_card_core1_regs_fifo2_reg_word94_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word94_shown;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word94_shown;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word94_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
@@ -820,6 +818,7 @@ reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
 wire card1_card_core1_regs_fifo2_direct_pulse4_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
+wire card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
@@ -833,10 +832,13 @@ reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_operand;
 reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
 wire card1_card_core1_regs_fifo2_direct_pulse5_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
+wire card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
+wire card1_card_core1_regs_fifo2_axis_block2_take;
+reg signed [31:0] card1_card_core1_regs_fifo2_axis_block2__snapshot2_live;
 reg [2:0] card1_card_core1_regs_fifo2_pulse_out2_count;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_out2_free_slot;
 wire [3:0] card1_card_core1_regs_fifo2_pulse_out2_head;
@@ -929,6 +931,7 @@ reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
+wire [1:0] card1_card_core1_regs_fifo2_pulse_source4_pulses_mask;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
@@ -1105,7 +1108,7 @@ reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037441;
+assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037442;
 assign card1_card_core1_regs_fifo2_reg_word78_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'd0;
@@ -1132,6 +1135,7 @@ assign card1_card_core1_regs_fifo2_reg_word112_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word113_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word114_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_pulse_source4_pulses_mask = 2'd3;
 
 
 
@@ -1142,38 +1146,40 @@ assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
 
 
 
-assign card1_pci_slave2_ad_out_next[31] = card1_pci_slave2_pin_lut64_out;
-assign card1_pci_slave2_ad_out_next[30] = card1_pci_slave2_pin_lut63_out;
-assign card1_pci_slave2_ad_out_next[29] = card1_pci_slave2_pin_lut62_out;
-assign card1_pci_slave2_ad_out_next[28] = card1_pci_slave2_pin_lut61_out;
-assign card1_pci_slave2_ad_out_next[27] = card1_pci_slave2_pin_lut60_out;
-assign card1_pci_slave2_ad_out_next[26] = card1_pci_slave2_pin_lut59_out;
-assign card1_pci_slave2_ad_out_next[25] = card1_pci_slave2_pin_lut58_out;
-assign card1_pci_slave2_ad_out_next[24] = card1_pci_slave2_pin_lut57_out;
-assign card1_pci_slave2_ad_out_next[23] = card1_pci_slave2_pin_lut56_out;
-assign card1_pci_slave2_ad_out_next[22] = card1_pci_slave2_pin_lut55_out;
-assign card1_pci_slave2_ad_out_next[21] = card1_pci_slave2_pin_lut54_out;
-assign card1_pci_slave2_ad_out_next[20] = card1_pci_slave2_pin_lut53_out;
-assign card1_pci_slave2_ad_out_next[19] = card1_pci_slave2_pin_lut52_out;
-assign card1_pci_slave2_ad_out_next[18] = card1_pci_slave2_pin_lut51_out;
-assign card1_pci_slave2_ad_out_next[17] = card1_pci_slave2_pin_lut50_out;
-assign card1_pci_slave2_ad_out_next[16] = card1_pci_slave2_pin_lut49_out;
-assign card1_pci_slave2_ad_out_next[15] = card1_pci_slave2_pin_lut48_out;
-assign card1_pci_slave2_ad_out_next[14] = card1_pci_slave2_pin_lut47_out;
-assign card1_pci_slave2_ad_out_next[13] = card1_pci_slave2_pin_lut46_out;
-assign card1_pci_slave2_ad_out_next[12] = card1_pci_slave2_pin_lut45_out;
-assign card1_pci_slave2_ad_out_next[11] = card1_pci_slave2_pin_lut44_out;
-assign card1_pci_slave2_ad_out_next[10] = card1_pci_slave2_pin_lut43_out;
-assign card1_pci_slave2_ad_out_next[9] = card1_pci_slave2_pin_lut42_out;
-assign card1_pci_slave2_ad_out_next[8] = card1_pci_slave2_pin_lut41_out;
-assign card1_pci_slave2_ad_out_next[7] = card1_pci_slave2_pin_lut40_out;
-assign card1_pci_slave2_ad_out_next[6] = card1_pci_slave2_pin_lut39_out;
-assign card1_pci_slave2_ad_out_next[5] = card1_pci_slave2_pin_lut38_out;
-assign card1_pci_slave2_ad_out_next[4] = card1_pci_slave2_pin_lut37_out;
-assign card1_pci_slave2_ad_out_next[3] = card1_pci_slave2_pin_lut36_out;
-assign card1_pci_slave2_ad_out_next[2] = card1_pci_slave2_pin_lut35_out;
-assign card1_pci_slave2_ad_out_next[1] = card1_pci_slave2_pin_lut34_out;
-assign card1_pci_slave2_ad_out_next[0] = card1_pci_slave2_pin_lut33_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[31] = card1_pci_slave2_pci_boundary2_pin_lut53_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[30] = card1_pci_slave2_pci_boundary2_pin_lut52_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[29] = card1_pci_slave2_pci_boundary2_pin_lut51_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[28] = card1_pci_slave2_pci_boundary2_pin_lut50_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[27] = card1_pci_slave2_pci_boundary2_pin_lut49_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[26] = card1_pci_slave2_pci_boundary2_pin_lut48_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[25] = card1_pci_slave2_pci_boundary2_pin_lut47_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[24] = card1_pci_slave2_pci_boundary2_pin_lut46_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[23] = card1_pci_slave2_pci_boundary2_pin_lut45_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[22] = card1_pci_slave2_pci_boundary2_pin_lut44_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[21] = card1_pci_slave2_pci_boundary2_pin_lut43_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[20] = card1_pci_slave2_pci_boundary2_pin_lut42_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[19] = card1_pci_slave2_pci_boundary2_pin_lut41_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[18] = card1_pci_slave2_pci_boundary2_pin_lut40_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[17] = card1_pci_slave2_pci_boundary2_pin_lut39_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[16] = card1_pci_slave2_pci_boundary2_pin_lut38_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[15] = card1_pci_slave2_pci_boundary2_pin_lut37_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[14] = card1_pci_slave2_pci_boundary2_pin_lut36_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[13] = card1_pci_slave2_pci_boundary2_pin_lut35_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[12] = card1_pci_slave2_pci_boundary2_pin_lut34_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[11] = card1_pci_slave2_pci_boundary2_pin_lut33_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[10] = card1_pci_slave2_pci_boundary2_pin_lut32_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[9] = card1_pci_slave2_pci_boundary2_pin_lut31_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[8] = card1_pci_slave2_pci_boundary2_pin_lut30_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[7] = card1_pci_slave2_pci_boundary2_pin_lut29_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[6] = card1_pci_slave2_pci_boundary2_pin_lut28_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[5] = card1_pci_slave2_pci_boundary2_pin_lut27_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[4] = card1_pci_slave2_pci_boundary2_pin_lut26_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[3] = card1_pci_slave2_pci_boundary2_pin_lut25_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[2] = card1_pci_slave2_pci_boundary2_pin_lut24_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[1] = card1_pci_slave2_pci_boundary2_pin_lut23_out;
+assign card1_pci_slave2_pci_boundary2_ad_out_next[0] = card1_pci_slave2_pci_boundary2_pin_lut22_out;
+assign card1_card_core1_regs_fifo2_direct_busy[1] = card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
+assign card1_card_core1_regs_fifo2_direct_busy[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
 assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
@@ -1688,11 +1694,11 @@ SB_IO #(.PIN_TYPE(6'b000000)) pad_idsel_0 (
 );
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_register
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_boundary2_control_input_register
     if (reset == 0) begin
-        card1_pci_slave2_frame_q <= 1;
-        card1_pci_slave2_frame_qq <= 1;
         card1_pci_slave2_irdy_q <= 1;
+        card1_pci_slave2_frame_qq <= 1;
+        card1_pci_slave2_frame_q <= 1;
     end
     else begin
         card1_pci_slave2_frame_q <= pci_pads0_input_pad0_from_pin;
@@ -1700,6 +1706,280 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_control_input_reg
         card1_pci_slave2_irdy_q <= pci_pads0_input_pad1_from_pin;
     end
 end
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut22_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut22_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut22_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut23_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut23_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut23_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut24_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut24_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut24_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut25_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut25_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut25_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut26_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut26_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut26_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut27_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut27_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut27_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut28_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut28_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut28_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut29_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut29_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut29_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut30_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut30_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut30_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut31_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut31_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut31_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut32_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut32_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut32_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut33_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut33_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut34_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut34_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut35_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut35_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut36_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut36_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut37_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut37_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut38_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut38_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut39_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut39_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut40_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut40_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut41_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut41_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut42_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut42_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut43_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut43_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut44_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut44_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut45_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut45_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut46_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut46_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut47_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut47_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut48_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut48_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut49_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut49_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut50_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut50_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut51_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut51_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut52_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut52_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+`ifdef SYNTHESIS
+SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pci_boundary2_pin_lut53_out_lut (.O(card1_pci_slave2_pci_boundary2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
+`else
+assign card1_pci_slave2_pci_boundary2_pin_lut53_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
+`endif
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_boundary2_bus_registers
+    if (reset == 0) begin
+        card1_pci_slave2_devsel_q <= 1;
+        pci_pads0_registered_pad4_enable <= 0;
+        card1_pci_slave2_perr_q <= 1;
+        card1_pci_slave2_ad_parity_q <= 0;
+        card1_pci_slave2_trdy_q <= 1;
+        card1_pci_slave2_stop_q <= 1;
+        pci_pads0_registered_pad3_enable <= 0;
+        pci_pads0_tristate_pad0_to_pin <= 1;
+        card1_pci_slave2_ad_out_q <= 0;
+        pci_pads0_registered_pad0_enable <= 0;
+        pci_pads0_tristate_pad1_enable <= 0;
+        pci_pads0_registered_pad2_enable <= 0;
+        pci_pads0_tristate_pad2_enable <= 0;
+        pci_pads0_tristate_pad1_to_pin <= 1;
+        pci_pads0_registered_pad1_enable <= 0;
+        card1_pci_slave2_parity_error_q <= 0;
+        pci_pads0_tristate_pad0_enable <= 0;
+    end
+    else begin
+        card1_pci_slave2_trdy_q <= card1_pci_slave2_trdy_next;
+        card1_pci_slave2_stop_q <= card1_pci_slave2_stop_next;
+        card1_pci_slave2_devsel_q <= card1_pci_slave2_devsel_next;
+        card1_pci_slave2_ad_out_q <= card1_pci_slave2_pci_boundary2_ad_out_next;
+        card1_pci_slave2_perr_q <= card1_pci_slave2_perr_next;
+        card1_pci_slave2_ad_parity_q <= card1_pci_slave2_ad_out_parity;
+        pci_pads0_registered_pad1_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
+        pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
+        pci_pads0_tristate_pad2_enable <= pci_pads0_registered_pad0_enable;
+        pci_pads0_registered_pad4_enable <= card1_pci_slave2_perr_oe_next;
+        pci_pads0_tristate_pad0_to_pin <= 1'b0;
+        pci_pads0_tristate_pad0_enable <= card1_pci_slave2_serr_oe_next;
+        card1_pci_slave2_parity_error_q <= card1_pci_slave2_parity_error_next;
+        pci_pads0_tristate_pad1_to_pin <= 1'b0;
+        pci_pads0_tristate_pad1_enable <= (card1_irq && (!card1_pci_slave2_interrupt_disable));
+    end
+end
+
+
+
+assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_trdy_next;
+assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_stop_next;
+assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_devsel_next;
+assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_pci_boundary2_ad_out_next;
+assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
 always @(pci_pads0_registered_pad5_from_pin, pci_pads0_registered_pad0_from_pin) begin: card1_pci_slave2_pci_parity2_parity_check
@@ -1789,7 +2069,7 @@ always @(card1_pci_slave2_bar2, card1_pci_slave2_bar1, card1_pci_slave2_mem_enab
     io_hit = (card1_pci_slave2_io_enable && ((code == 2) || (code == 3)) && (pci_pads0_registered_pad0_from_pin[32-1:16] == 0) && (pci_pads0_registered_pad0_from_pin[16-1:8] == card1_pci_slave2_bar0[16-1:8]));
     mem_command = (card1_pci_slave2_mem_enable && ((code == 6) || (code == 7) || (code == 12) || (code == 14) || (code == 15)));
     mem_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar1[32-1:12]));
-    alias_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:8] == card1_pci_slave2_bar2[32-1:8]) && (!mem_hit));
+    alias_hit = (mem_command && (pci_pads0_registered_pad0_from_pin[32-1:12] == card1_pci_slave2_bar2[32-1:12]) && (!mem_hit));
     card1_pci_slave2_claim = ((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (config_hit || io_hit || mem_hit || alias_hit));
     card1_pci_slave2_claim_config = config_hit;
     card1_pci_slave2_claim_io = io_hit;
@@ -1808,7 +2088,7 @@ always @(pci_pads0_registered_pad5_from_pin, card1_pci_slave2_claim_alias, pci_p
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
     end
     else if (card1_pci_slave2_claim_alias) begin
-        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3f);
+        card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
     end
     else begin
         card1_pci_slave2_start_addr = (pci_pads0_registered_pad0_from_pin[(10 + 2)-1:2] & 10'h3ff);
@@ -1888,8 +2168,8 @@ always @(pci_pads0_registered_pad0_from_pin, card1_pci_slave2_req_addr, card1_pc
     first_open = (card1_pci_slave2_first_pending && hold_state && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
     first = (first_open && (!bad));
     prefetch = ((card1_pci_slave2_state == 4'b0110) && card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
-    card1_pci_slave2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
-    card1_pci_slave2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
+    card1_pci_slave2_pci_requests2_local_re = ((first && card1_pci_slave2_is_read) || prefetch);
+    card1_pci_slave2_pci_requests2_local_we = (drain || (first && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q)));
     card1_pci_slave2_first_ready = (card1_pci_slave2_first_pending && (!card1_pci_slave2_is_config) && (!drain) && (!card1_pci_slave2_req_addr_stale));
     card1_pci_slave2_fetch_more = (card1_pci_slave2_is_read && card1_pci_slave2_fetching && (!card1_pci_slave2_b_valid) && (card1_pci_slave2_trdy_q || (!card1_pci_slave2_frame_q)));
     card1_pci_slave2_pci_requests2_local_space = (drain || card1_pci_slave2_space_mem);
@@ -1912,12 +2192,12 @@ end
 
 
 assign card1_pci_slave2_draining = (card1_pci_slave2_h_valid || card1_pci_slave2_wq_valid);
-assign card1_pci_slave2_got = ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
-assign card1_pci_slave2_accepted = (card1_pci_slave2_local_we && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_hold_got = (card1_pci_slave2_first_ready && card1_pci_slave2_is_read && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_hold_accepted = (card1_pci_slave2_first_ready && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q) && card1_pci_slave2_local_ready);
-assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci_slave2_is_read || (!card1_pci_slave2_irdy_q)) && card1_pci_slave2_local_retry);
-assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_local_ready);
+assign card1_pci_slave2_got = ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_ready) || ((card1_pci_slave2_state == 4'b0001) && card1_pci_slave2_is_read));
+assign card1_pci_slave2_accepted = (card1_pci_slave2_pci_requests2_local_we && card1_pci_slave2_pci_requests2_local_ready);
+assign card1_pci_slave2_hold_got = (card1_pci_slave2_first_ready && card1_pci_slave2_is_read && card1_pci_slave2_pci_requests2_local_ready);
+assign card1_pci_slave2_hold_accepted = (card1_pci_slave2_first_ready && (!card1_pci_slave2_is_read) && (!card1_pci_slave2_irdy_q) && card1_pci_slave2_pci_requests2_local_ready);
+assign card1_pci_slave2_hold_retry = (card1_pci_slave2_first_ready && (card1_pci_slave2_is_read || (!card1_pci_slave2_irdy_q)) && card1_pci_slave2_pci_requests2_local_retry);
+assign card1_pci_slave2_burst_got = (card1_pci_slave2_fetch_more && card1_pci_slave2_pci_requests2_local_ready);
 
 
 always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_config_rdata, card1_pci_slave2_spare_data, card1_pci_slave2_local_rdata) begin: card1_pci_slave2_read_path
@@ -1930,14 +2210,6 @@ always @(card1_pci_slave2_is_config, card1_pci_slave2_b_valid, card1_pci_slave2_
     else begin
         card1_pci_slave2_read_source = card1_pci_slave2_local_rdata;
     end
-end
-
-
-always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_pci_slave2_first_phase, card1_pci_slave2_initial_wait_over, card1_pci_slave2_state, card1_pci_slave2_trdy_q) begin: card1_pci_slave2_latency
-    reg target_waits;
-    target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
-    card1_pci_slave2_waiting = target_waits;
-    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && card1_pci_slave2_initial_wait_over) || ((!card1_pci_slave2_first_phase) && card1_pci_slave2_subsequent_wait_over)));
 end
 
 
@@ -2571,14 +2843,22 @@ assign card1_pci_slave2_ad_oe_next = (pci_pads0_input_pad1_from_pin ? (pci_pads0
 `endif
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_phase_registers
+always @(card1_pci_slave2_subsequent_wait_over, card1_pci_slave2_stop_q, card1_pci_slave2_initial_wait_over, card1_pci_slave2_first_phase, card1_pci_slave2_trdy_q, card1_pci_slave2_state) begin: card1_pci_slave2_pci_transaction2_latency
+    reg target_waits;
+    target_waits = (card1_pci_slave2_trdy_q && card1_pci_slave2_stop_q && (card1_pci_slave2_state != 4'b0000) && (card1_pci_slave2_state != 4'b0111) && (card1_pci_slave2_state != 4'b1000));
+    card1_pci_slave2_waiting = target_waits;
+    card1_pci_slave2_timeout = (target_waits && ((card1_pci_slave2_first_phase && card1_pci_slave2_initial_wait_over) || ((!card1_pci_slave2_first_phase) && card1_pci_slave2_subsequent_wait_over)));
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_phase_registers
     if (reset == 0) begin
-        card1_pci_slave2_before_last <= 0;
         card1_pci_slave2_address_fault <= 0;
         card1_pci_slave2_at_last <= 0;
-        card1_pci_slave2_first_phase <= 0;
-        card1_pci_slave2_state <= 4'b0000;
         card1_pci_slave2_phase_addr <= 0;
+        card1_pci_slave2_first_phase <= 0;
+        card1_pci_slave2_before_last <= 0;
+        card1_pci_slave2_state <= 4'b0000;
     end
     else begin
         card1_pci_slave2_state <= card1_pci_slave2_state_next;
@@ -2600,15 +2880,15 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_phase_registers
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_transaction_kind
     if (reset == 0) begin
         card1_pci_slave2_is_config <= 0;
-        card1_pci_slave2_first_pending <= 0;
-        card1_pci_slave2_space_mem <= 0;
-        card1_pci_slave2_io_byte <= 0;
-        card1_pci_slave2_single <= 0;
-        card1_pci_slave2_is_read <= 0;
         card1_pci_slave2_fetching <= 0;
+        card1_pci_slave2_space_mem <= 0;
+        card1_pci_slave2_first_pending <= 0;
+        card1_pci_slave2_single <= 0;
+        card1_pci_slave2_io_byte <= 0;
+        card1_pci_slave2_is_read <= 0;
     end
     else begin
         if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase)) begin
@@ -2624,10 +2904,10 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
             if ((card1_pci_slave2_got || card1_pci_slave2_accepted)) begin
                 card1_pci_slave2_first_pending <= (card1_pci_slave2_first_pending && card1_pci_slave2_draining);
             end
-            if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready && (card1_pci_slave2_single || (card1_pci_slave2_req_addr == 1023)))) begin
+            if ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_ready && (card1_pci_slave2_single || (card1_pci_slave2_req_addr == 1023)))) begin
                 card1_pci_slave2_fetching <= 1'b0;
             end
-            if ((card1_pci_slave2_local_re && card1_pci_slave2_local_retry && (!card1_pci_slave2_first_pending))) begin
+            if ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_retry && (!card1_pci_slave2_first_pending))) begin
                 card1_pci_slave2_fetching <= 1'b0;
             end
         end
@@ -2635,16 +2915,16 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_transaction_kind
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_request_address
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_request_address
     if (reset == 0) begin
-        card1_pci_slave2_req_addr <= 0;
         card1_pci_slave2_req_addr_stale <= 0;
+        card1_pci_slave2_req_addr <= 0;
     end
     else begin
         if (card1_pci_slave2_claim) begin
             card1_pci_slave2_req_addr_stale <= card1_pci_slave2_draining;
         end
-        if (((card1_pci_slave2_local_re || card1_pci_slave2_local_we) && card1_pci_slave2_local_ready)) begin
+        if (((card1_pci_slave2_pci_requests2_local_re || card1_pci_slave2_pci_requests2_local_we) && card1_pci_slave2_pci_requests2_local_ready)) begin
             card1_pci_slave2_req_addr <= (card1_pci_slave2_req_addr + 1);
         end
         else if (((card1_pci_slave2_state == 4'b0000) && card1_pci_slave2_address_phase && (!card1_pci_slave2_draining))) begin
@@ -2659,7 +2939,7 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_request_address
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_latency_count
+always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_transaction2_latency_count
     if (reset == 0) begin
         card1_pci_slave2_subsequent_wait_over <= 0;
         card1_pci_slave2_wait_count <= 0;
@@ -2678,280 +2958,6 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_latency_count
         end
     end
 end
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut33_out_lut (.O(card1_pci_slave2_pin_lut33_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[0]), .I3(card1_pci_slave2_read_source[0]));
-`else
-assign card1_pci_slave2_pin_lut33_out = (card1_pci_slave2_read_source[0] ? (card1_pci_slave2_ad_out_q[0] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[0] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut34_out_lut (.O(card1_pci_slave2_pin_lut34_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[1]), .I3(card1_pci_slave2_read_source[1]));
-`else
-assign card1_pci_slave2_pin_lut34_out = (card1_pci_slave2_read_source[1] ? (card1_pci_slave2_ad_out_q[1] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[1] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut35_out_lut (.O(card1_pci_slave2_pin_lut35_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[2]), .I3(card1_pci_slave2_read_source[2]));
-`else
-assign card1_pci_slave2_pin_lut35_out = (card1_pci_slave2_read_source[2] ? (card1_pci_slave2_ad_out_q[2] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[2] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut36_out_lut (.O(card1_pci_slave2_pin_lut36_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[3]), .I3(card1_pci_slave2_read_source[3]));
-`else
-assign card1_pci_slave2_pin_lut36_out = (card1_pci_slave2_read_source[3] ? (card1_pci_slave2_ad_out_q[3] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[3] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut37_out_lut (.O(card1_pci_slave2_pin_lut37_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[4]), .I3(card1_pci_slave2_read_source[4]));
-`else
-assign card1_pci_slave2_pin_lut37_out = (card1_pci_slave2_read_source[4] ? (card1_pci_slave2_ad_out_q[4] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[4] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut38_out_lut (.O(card1_pci_slave2_pin_lut38_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[5]), .I3(card1_pci_slave2_read_source[5]));
-`else
-assign card1_pci_slave2_pin_lut38_out = (card1_pci_slave2_read_source[5] ? (card1_pci_slave2_ad_out_q[5] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[5] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut39_out_lut (.O(card1_pci_slave2_pin_lut39_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[6]), .I3(card1_pci_slave2_read_source[6]));
-`else
-assign card1_pci_slave2_pin_lut39_out = (card1_pci_slave2_read_source[6] ? (card1_pci_slave2_ad_out_q[6] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[6] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut40_out_lut (.O(card1_pci_slave2_pin_lut40_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[7]), .I3(card1_pci_slave2_read_source[7]));
-`else
-assign card1_pci_slave2_pin_lut40_out = (card1_pci_slave2_read_source[7] ? (card1_pci_slave2_ad_out_q[7] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[7] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut41_out_lut (.O(card1_pci_slave2_pin_lut41_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[8]), .I3(card1_pci_slave2_read_source[8]));
-`else
-assign card1_pci_slave2_pin_lut41_out = (card1_pci_slave2_read_source[8] ? (card1_pci_slave2_ad_out_q[8] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[8] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut42_out_lut (.O(card1_pci_slave2_pin_lut42_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[9]), .I3(card1_pci_slave2_read_source[9]));
-`else
-assign card1_pci_slave2_pin_lut42_out = (card1_pci_slave2_read_source[9] ? (card1_pci_slave2_ad_out_q[9] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[9] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut43_out_lut (.O(card1_pci_slave2_pin_lut43_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[10]), .I3(card1_pci_slave2_read_source[10]));
-`else
-assign card1_pci_slave2_pin_lut43_out = (card1_pci_slave2_read_source[10] ? (card1_pci_slave2_ad_out_q[10] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[10] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut44_out_lut (.O(card1_pci_slave2_pin_lut44_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[11]), .I3(card1_pci_slave2_read_source[11]));
-`else
-assign card1_pci_slave2_pin_lut44_out = (card1_pci_slave2_read_source[11] ? (card1_pci_slave2_ad_out_q[11] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[11] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut45_out_lut (.O(card1_pci_slave2_pin_lut45_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[12]), .I3(card1_pci_slave2_read_source[12]));
-`else
-assign card1_pci_slave2_pin_lut45_out = (card1_pci_slave2_read_source[12] ? (card1_pci_slave2_ad_out_q[12] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[12] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut46_out_lut (.O(card1_pci_slave2_pin_lut46_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[13]), .I3(card1_pci_slave2_read_source[13]));
-`else
-assign card1_pci_slave2_pin_lut46_out = (card1_pci_slave2_read_source[13] ? (card1_pci_slave2_ad_out_q[13] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[13] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut47_out_lut (.O(card1_pci_slave2_pin_lut47_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[14]), .I3(card1_pci_slave2_read_source[14]));
-`else
-assign card1_pci_slave2_pin_lut47_out = (card1_pci_slave2_read_source[14] ? (card1_pci_slave2_ad_out_q[14] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[14] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut48_out_lut (.O(card1_pci_slave2_pin_lut48_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[15]), .I3(card1_pci_slave2_read_source[15]));
-`else
-assign card1_pci_slave2_pin_lut48_out = (card1_pci_slave2_read_source[15] ? (card1_pci_slave2_ad_out_q[15] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[15] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut49_out_lut (.O(card1_pci_slave2_pin_lut49_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[16]), .I3(card1_pci_slave2_read_source[16]));
-`else
-assign card1_pci_slave2_pin_lut49_out = (card1_pci_slave2_read_source[16] ? (card1_pci_slave2_ad_out_q[16] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[16] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut50_out_lut (.O(card1_pci_slave2_pin_lut50_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[17]), .I3(card1_pci_slave2_read_source[17]));
-`else
-assign card1_pci_slave2_pin_lut50_out = (card1_pci_slave2_read_source[17] ? (card1_pci_slave2_ad_out_q[17] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[17] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut51_out_lut (.O(card1_pci_slave2_pin_lut51_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[18]), .I3(card1_pci_slave2_read_source[18]));
-`else
-assign card1_pci_slave2_pin_lut51_out = (card1_pci_slave2_read_source[18] ? (card1_pci_slave2_ad_out_q[18] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[18] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut52_out_lut (.O(card1_pci_slave2_pin_lut52_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[19]), .I3(card1_pci_slave2_read_source[19]));
-`else
-assign card1_pci_slave2_pin_lut52_out = (card1_pci_slave2_read_source[19] ? (card1_pci_slave2_ad_out_q[19] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[19] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut53_out_lut (.O(card1_pci_slave2_pin_lut53_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[20]), .I3(card1_pci_slave2_read_source[20]));
-`else
-assign card1_pci_slave2_pin_lut53_out = (card1_pci_slave2_read_source[20] ? (card1_pci_slave2_ad_out_q[20] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[20] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut54_out_lut (.O(card1_pci_slave2_pin_lut54_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[21]), .I3(card1_pci_slave2_read_source[21]));
-`else
-assign card1_pci_slave2_pin_lut54_out = (card1_pci_slave2_read_source[21] ? (card1_pci_slave2_ad_out_q[21] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[21] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut55_out_lut (.O(card1_pci_slave2_pin_lut55_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[22]), .I3(card1_pci_slave2_read_source[22]));
-`else
-assign card1_pci_slave2_pin_lut55_out = (card1_pci_slave2_read_source[22] ? (card1_pci_slave2_ad_out_q[22] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[22] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut56_out_lut (.O(card1_pci_slave2_pin_lut56_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[23]), .I3(card1_pci_slave2_read_source[23]));
-`else
-assign card1_pci_slave2_pin_lut56_out = (card1_pci_slave2_read_source[23] ? (card1_pci_slave2_ad_out_q[23] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[23] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut57_out_lut (.O(card1_pci_slave2_pin_lut57_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[24]), .I3(card1_pci_slave2_read_source[24]));
-`else
-assign card1_pci_slave2_pin_lut57_out = (card1_pci_slave2_read_source[24] ? (card1_pci_slave2_ad_out_q[24] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[24] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut58_out_lut (.O(card1_pci_slave2_pin_lut58_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[25]), .I3(card1_pci_slave2_read_source[25]));
-`else
-assign card1_pci_slave2_pin_lut58_out = (card1_pci_slave2_read_source[25] ? (card1_pci_slave2_ad_out_q[25] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[25] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut59_out_lut (.O(card1_pci_slave2_pin_lut59_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[26]), .I3(card1_pci_slave2_read_source[26]));
-`else
-assign card1_pci_slave2_pin_lut59_out = (card1_pci_slave2_read_source[26] ? (card1_pci_slave2_ad_out_q[26] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[26] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut60_out_lut (.O(card1_pci_slave2_pin_lut60_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[27]), .I3(card1_pci_slave2_read_source[27]));
-`else
-assign card1_pci_slave2_pin_lut60_out = (card1_pci_slave2_read_source[27] ? (card1_pci_slave2_ad_out_q[27] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[27] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut61_out_lut (.O(card1_pci_slave2_pin_lut61_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[28]), .I3(card1_pci_slave2_read_source[28]));
-`else
-assign card1_pci_slave2_pin_lut61_out = (card1_pci_slave2_read_source[28] ? (card1_pci_slave2_ad_out_q[28] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[28] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut62_out_lut (.O(card1_pci_slave2_pin_lut62_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[29]), .I3(card1_pci_slave2_read_source[29]));
-`else
-assign card1_pci_slave2_pin_lut62_out = (card1_pci_slave2_read_source[29] ? (card1_pci_slave2_ad_out_q[29] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[29] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut63_out_lut (.O(card1_pci_slave2_pin_lut63_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[30]), .I3(card1_pci_slave2_read_source[30]));
-`else
-assign card1_pci_slave2_pin_lut63_out = (card1_pci_slave2_read_source[30] ? (card1_pci_slave2_ad_out_q[30] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[30] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-`ifdef SYNTHESIS
-SB_LUT4 #(.LUT_INIT(16'hFD20)) card1_pci_slave2_pin_lut64_out_lut (.O(card1_pci_slave2_pin_lut64_out), .I0(pci_pads0_input_pad1_from_pin), .I1(card1_pci_slave2_trdy_q), .I2(card1_pci_slave2_ad_out_q[31]), .I3(card1_pci_slave2_read_source[31]));
-`else
-assign card1_pci_slave2_pin_lut64_out = (card1_pci_slave2_read_source[31] ? (card1_pci_slave2_ad_out_q[31] ? 1'b1 : (card1_pci_slave2_trdy_q ? 1'b1 : (pci_pads0_input_pad1_from_pin ? 1'b0 : 1'b1))) : (card1_pci_slave2_ad_out_q[31] ? (card1_pci_slave2_trdy_q ? 1'b0 : (pci_pads0_input_pad1_from_pin ? 1'b1 : 1'b0)) : 1'b0));
-`endif
-
-
-always @(posedge clock, negedge reset) begin: card1_pci_slave2_bus_registers
-    if (reset == 0) begin
-        pci_pads0_registered_pad1_enable <= 0;
-        card1_pci_slave2_ad_parity_q <= 0;
-        pci_pads0_registered_pad4_enable <= 0;
-        card1_pci_slave2_ad_out_q <= 0;
-        pci_pads0_registered_pad3_enable <= 0;
-        pci_pads0_tristate_pad0_to_pin <= 1;
-        pci_pads0_registered_pad0_enable <= 0;
-        pci_pads0_tristate_pad1_enable <= 0;
-        card1_pci_slave2_perr_q <= 1;
-        pci_pads0_registered_pad2_enable <= 0;
-        pci_pads0_tristate_pad2_enable <= 0;
-        card1_pci_slave2_parity_error_q <= 0;
-        card1_pci_slave2_stop_q <= 1;
-        pci_pads0_tristate_pad1_to_pin <= 1;
-        pci_pads0_tristate_pad0_enable <= 0;
-        card1_pci_slave2_devsel_q <= 1;
-        card1_pci_slave2_trdy_q <= 1;
-    end
-    else begin
-        card1_pci_slave2_trdy_q <= card1_pci_slave2_trdy_next;
-        card1_pci_slave2_stop_q <= card1_pci_slave2_stop_next;
-        card1_pci_slave2_devsel_q <= card1_pci_slave2_devsel_next;
-        card1_pci_slave2_ad_out_q <= card1_pci_slave2_ad_out_next;
-        card1_pci_slave2_perr_q <= card1_pci_slave2_perr_next;
-        card1_pci_slave2_ad_parity_q <= card1_pci_slave2_ad_out_parity;
-        pci_pads0_registered_pad1_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad3_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad2_enable <= card1_pci_slave2_drive_next;
-        pci_pads0_registered_pad0_enable <= card1_pci_slave2_ad_oe_next;
-        pci_pads0_tristate_pad2_enable <= pci_pads0_registered_pad0_enable;
-        pci_pads0_registered_pad4_enable <= card1_pci_slave2_perr_oe_next;
-        pci_pads0_tristate_pad0_to_pin <= 1'b0;
-        pci_pads0_tristate_pad0_enable <= card1_pci_slave2_serr_oe_next;
-        card1_pci_slave2_parity_error_q <= card1_pci_slave2_parity_error_next;
-        pci_pads0_tristate_pad1_to_pin <= 1'b0;
-        pci_pads0_tristate_pad1_enable <= (card1_irq && (!card1_pci_slave2_interrupt_disable));
-    end
-end
-
-
-
-assign pci_pads0_registered_pad1_to_pin = card1_pci_slave2_trdy_next;
-assign pci_pads0_registered_pad3_to_pin = card1_pci_slave2_stop_next;
-assign pci_pads0_registered_pad2_to_pin = card1_pci_slave2_devsel_next;
-assign pci_pads0_registered_pad0_to_pin = card1_pci_slave2_ad_out_next;
-assign pci_pads0_registered_pad4_to_pin = card1_pci_slave2_perr_next;
 
 
 always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_read_buffer
@@ -3021,14 +3027,14 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_buffers2_writ
             card1_pci_slave2_h_data <= pci_pads0_registered_pad0_from_pin;
             card1_pci_slave2_h_be <= (~pci_pads0_registered_pad5_from_pin);
         end
-        if ((card1_pci_slave2_local_re && card1_pci_slave2_local_ready)) begin
+        if ((card1_pci_slave2_pci_requests2_local_re && card1_pci_slave2_pci_requests2_local_ready)) begin
             card1_pci_slave2_spare_data <= card1_pci_slave2_local_rdata;
         end
     end
 end
 
 
-always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_pci_buffers2_posted_count
+always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_pci_requests2_local_ready, card1_pci_slave2_s_valid) begin: card1_pci_slave2_pci_buffers2_posted_count
     reg [2-1:0] held;
     held = 0;
     if (card1_pci_slave2_h_valid) begin
@@ -3036,14 +3042,14 @@ always @(card1_pci_slave2_h_valid, card1_pci_slave2_wq_valid, card1_pci_slave2_l
         if (card1_pci_slave2_s_valid) begin
             held = 2;
         end
-        if (card1_pci_slave2_local_ready) begin
+        if (card1_pci_slave2_pci_requests2_local_ready) begin
             held = (held - 1);
         end
         if (card1_pci_slave2_wq_valid) begin
             held = (held + 1);
         end
     end
-    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_local_ready))) begin
+    else if ((card1_pci_slave2_wq_valid && (!card1_pci_slave2_pci_requests2_local_ready))) begin
         held = 1;
     end
     card1_pci_slave2_buffered_next = held;
@@ -3162,7 +3168,7 @@ always @(card1_pci_slave2_pci_config2_signaled_system_error, card1_pci_slave2_pa
             card1_pci_slave2_config_rdata = (card1_pci_slave2_bar1 & 32'hfffff000);
         end
         'h6: begin
-            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar2 & 32'hffffff00);
+            card1_pci_slave2_config_rdata = (card1_pci_slave2_bar2 & 32'hfffff000);
         end
         'hb: begin
             card1_pci_slave2_config_rdata = 32'h11234;
@@ -3611,7 +3617,7 @@ assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 32);
+assign card1_card_core1_regs_fifo2_reg_word86_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -3633,7 +3639,7 @@ assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 36);
+assign card1_card_core1_regs_fifo2_reg_word87_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_pci_slave2_pci_requests2_local_addr == 320));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -4062,7 +4068,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
+assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
 
 
 
@@ -4071,16 +4077,16 @@ assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_reg
 
 always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word94_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[6-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[6-1:0] & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[6-1:0];
 
 
 
@@ -4103,7 +4109,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word95_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_pci_slave2_pci_requests2_local_addr == 260));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
@@ -4121,7 +4127,7 @@ assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 68);
+assign card1_card_core1_regs_fifo2_reg_word95_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
@@ -4169,7 +4175,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word96_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_pci_slave2_pci_requests2_local_addr == 324));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
@@ -4187,7 +4193,7 @@ assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 72);
+assign card1_card_core1_regs_fifo2_reg_word96_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
@@ -4235,7 +4241,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word97_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_pci_slave2_pci_requests2_local_addr == 264));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
@@ -4253,7 +4259,7 @@ assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {8'h0, card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 76);
+assign card1_card_core1_regs_fifo2_reg_word97_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_written_addr == 264));
 
 
 
@@ -4299,7 +4305,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word98_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_pci_slave2_pci_requests2_local_addr == 328));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
@@ -4317,7 +4323,7 @@ assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {8'h0, card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 80);
+assign card1_card_core1_regs_fifo2_reg_word98_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_written_addr == 328));
 
 
 
@@ -5908,7 +5914,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_x = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
+assign card1_card_core1_regs_fifo2_direct_pulse4_command_busy = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
 
 
 
@@ -6001,7 +6007,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_direct_busy_y = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
+assign card1_card_core1_regs_fifo2_direct_pulse5_command_busy = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
 
 
 
@@ -6088,6 +6094,22 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
                 card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_gap != 1);
             end
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_axis_block2_take = (card1_card_core1_regs_fifo2_io_read && ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256)));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_axis_block2__snapshot2_capture
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_axis_block2_take) begin
+            card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_axis_block2__snapshot2_live;
         end
     end
 end
@@ -6262,20 +6284,20 @@ end
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_count_position
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_position_y <= 0;
+        card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= 0;
     end
     else begin
         if (card1_card_core1_regs_fifo2_clear_position) begin
-            card1_card_core1_regs_fifo2_position_y <= 0;
+            card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= 0;
         end
         else if (card1_card_core1_regs_fifo2_home_zero[1]) begin
-            card1_card_core1_regs_fifo2_position_y <= 0;
+            card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= 0;
             if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
-                card1_card_core1_regs_fifo2_position_y <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta;
+                card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta;
             end
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
-            card1_card_core1_regs_fifo2_position_y <= (card1_card_core1_regs_fifo2_position_y + card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta);
+            card1_card_core1_regs_fifo2_axis_block2__snapshot2_live <= (card1_card_core1_regs_fifo2_axis_block2__snapshot2_live + card1_card_core1_regs_fifo2_pulse_out2_axis_y_delta);
         end
     end
 end
@@ -6908,7 +6930,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
-always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
+always @(card1_pci_slave2_pci_requests2_local_re, card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_be, card1_pci_slave2_pci_requests2_local_space, card1_pci_slave2_pci_requests2_local_we, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_decode_bus
     reg [32-1:0] mask;
     mask = 32'h0;
     if (card1_pci_slave2_pci_requests2_local_be[0]) begin
@@ -6924,15 +6946,15 @@ always @(card1_pci_slave2_local_re, card1_card_core1_regs_fifo2_read_waited, car
         mask[32-1:24] = 255;
     end
     card1_card_core1_regs_fifo2_byte_mask = mask;
-    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
-    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written) && (!card1_card_core1_regs_fifo2_read_waited));
-    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_write = (card1_pci_slave2_pci_requests2_local_we && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written));
+    card1_card_core1_regs_fifo2_io_read = (card1_pci_slave2_pci_requests2_local_re && (!card1_pci_slave2_pci_requests2_local_space) && (!card1_card_core1_regs_fifo2_io_written) && (!card1_card_core1_regs_fifo2_read_waited));
+    card1_card_core1_regs_fifo2_push = (card1_pci_slave2_pci_requests2_local_we && card1_pci_slave2_pci_requests2_local_space && (!card1_card_core1_regs_fifo2_fifo_full) && (card1_pci_slave2_pci_requests2_local_be != 0) && (!card1_card_core1_regs_fifo2_io_written));
 end
 
 
 always @(card1_card_core1_regs_fifo2_read_waited, card1_card_core1_regs_fifo2_io_written, card1_pci_slave2_pci_requests2_local_write, card1_pci_slave2_pci_requests2_local_space, card1_card_core1_regs_fifo2_read_word, card1_card_core1_regs_fifo2_fifo_full) begin: card1_card_core1_regs_fifo2_answer_bus
-    card1_pci_slave2_local_ready = ((card1_pci_slave2_pci_requests2_local_write || card1_pci_slave2_pci_requests2_local_space || card1_card_core1_regs_fifo2_read_waited) && (!card1_card_core1_regs_fifo2_io_written) && (!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)));
-    card1_pci_slave2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
+    card1_pci_slave2_pci_requests2_local_ready = ((card1_pci_slave2_pci_requests2_local_write || card1_pci_slave2_pci_requests2_local_space || card1_card_core1_regs_fifo2_read_waited) && (!card1_card_core1_regs_fifo2_io_written) && (!(card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full)));
+    card1_pci_slave2_pci_requests2_local_retry = (card1_pci_slave2_pci_requests2_local_write && card1_pci_slave2_pci_requests2_local_space && card1_card_core1_regs_fifo2_fifo_full && (!card1_card_core1_regs_fifo2_io_written));
     if (card1_pci_slave2_pci_requests2_local_space) begin
         card1_pci_slave2_local_rdata = 0;
     end
@@ -7021,24 +7043,12 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_output
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_snapshot
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_pos_y_snapshot <= 0;
-    end
-    else begin
-        if ((card1_card_core1_regs_fifo2_io_read && (card1_pci_slave2_pci_requests2_local_addr == 32))) begin
-            card1_card_core1_regs_fifo2_pos_y_snapshot <= card1_card_core1_regs_fifo2_position_y;
-        end
-    end
-end
 
-
-
-assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y);
+assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy != 0);
 assign card1_card_core1_regs_fifo2_outputs_busy = ((card1_card_core1_regs_fifo2_requested != 0) || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
-assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || card1_card_core1_regs_fifo2_direct_busy_x || card1_card_core1_regs_fifo2_direct_busy_y || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
+assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || (card1_card_core1_regs_fifo2_direct_busy != 0) || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
 
 
 
@@ -7052,7 +7062,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word95_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7065,13 +7075,13 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word97__store70_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2__axis_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word96_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7084,7 +7094,7 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word98__store71_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = card1_card_core1_regs_fifo2_seq_load;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
     end
 end

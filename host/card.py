@@ -7,6 +7,8 @@
     card.mark()
     card.wait_done()
     card.position()                                # (x, y) steps
+    card.positions()                               # every axis's steps, at one instant
+    card.direct(2, -400, period=100)               # direct pulses on Z (CONTROL.MODE = 1)
 
 Every command is checked on the host before a word is queued (ValueError,
 nothing sent): coordinates against the card's coordinate width, arcs against
@@ -40,7 +42,9 @@ from models import registers as regmap
 from models.dda_model import ArcCommand, plan_arc
 
 MAJOR = regmap.VERSION >> 8
-MINOR = regmap.VERSION & 0xFF
+# the oldest minor version this host works with: 2.1 added STEP_SPACE and STEP_MODE, which configure
+# writes; 2.2's per-axis blocks need no check (X's and Y's registers are BAR0's, a card of more axes is 2.2)
+MINOR = 1
 ARC_OPCODE = isa.encode("ARC", 1, 0, 1, 0)[0] >> 28
 ERROR_NAMES = {code: name for code, name, _ in isa.ERRORS}
 
@@ -102,6 +106,27 @@ class Card(MachineIO):
 
     def field(self, reg, name, word=None):
         return regmap.field_value(reg, name, self.read(reg) if word is None else word)
+
+    def _axis_register(self, name, axis):
+        """The per-axis register ``name`` of ``axis`` (0 X), if the card has that axis: BAR0's
+        own for X and Y (POS_X, ...), in BAR2's block for the others (docs/registers.md)."""
+        if not isinstance(axis, int) or not 0 <= axis < self.identity.axes:
+            raise ValueError(f"axis {axis!r}: the card has {self.identity.axes} axes "
+                             f"({names(range(self.identity.axes))})")
+        return regmap.axis_register(name, axis)
+
+    def axis_read(self, name, axis):
+        """The per-axis register ``name`` (POS, PULSE_PERIOD, PULSE_COUNT) of ``axis``."""
+        return self.transport.read(self._axis_register(name, axis).offset)
+
+    def axis_write(self, name, axis, value):
+        """Write the per-axis register ``name`` of ``axis``; a value outside its range is refused."""
+        reg = self._axis_register(name, axis)
+        if reg.access == "RO":
+            raise ValueError(f"{reg.name} is read only")
+        if not reg.minimum <= value <= reg.maximum:
+            raise ValueError(f"{reg.name} = {value} is outside {reg.minimum}..{reg.maximum}")
+        self.transport.write(reg.offset, value & 0xFFFFFFFF)
 
     # ----- identity and set-up --------------------------------------------------
     def identify(self):
@@ -276,6 +301,33 @@ class Card(MachineIO):
         """(x, y) steps that left the pins (POS_X snapshots POS_Y)."""
         x = self.field("POS_X", "STEPS")
         return x, self.field("POS_Y", "STEPS")
+
+    def positions(self):
+        """Every axis's steps that left the pins, X first, all of one clock
+        (reading X's POS captures the others'; docs/registers.md)."""
+        words = [self.axis_read("POS", axis) for axis in range(self.identity.axes)]
+        return tuple(regmap.field_value("POS_X", "STEPS", word) for word in words)
+
+    def direct(self, axis, count, period=None):
+        """Direct pulses on ``axis`` (0 X): ``count`` signed pulses at ``period``
+        clocks apart (PULSE_PERIOD; None: as it is).  Puts the card in direct
+        mode (CONTROL.MODE = 1, which holds the command queue) if it is not;
+        the pulses start at once, the axis's PULSE_COUNT reads what is left."""
+        period_reg, count_reg = self._axis_register("PULSE_PERIOD", axis), self._axis_register("PULSE_COUNT", axis)
+        if period is not None and not period_reg.minimum <= period <= period_reg.maximum:
+            raise ValueError(f"{period_reg.name} = {period} is outside {period_reg.minimum}..{period_reg.maximum}")
+        if not count_reg.minimum <= count <= count_reg.maximum:
+            raise ValueError(f"{count_reg.name} = {count} is outside {count_reg.minimum}..{count_reg.maximum}")
+        control = self.read("CONTROL")
+        if not regmap.field_value("CONTROL", "MODE", control):
+            self.write("CONTROL", control | regmap.field_of("CONTROL", MODE=1))
+        if period is not None:
+            self.axis_write("PULSE_PERIOD", axis, period)
+        self.axis_write("PULSE_COUNT", axis, count)
+
+    def pulses_left(self, axis):
+        """Direct pulses still to go on ``axis``."""
+        return regmap.field_value("PULSE_COUNT_X", "COUNT", self.axis_read("PULSE_COUNT", axis))
 
     def check(self, status=None):
         """MachineStopped if the guard has stopped the card, CardError if it stopped on an error."""

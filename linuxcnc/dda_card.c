@@ -116,7 +116,7 @@ static void read_card(void *arg, long period)
     struct card *c = arg;
     uint32_t raw[DDA_AXES_MAX], status = 0, machine = 0;
     int i = 0, level;
-    while (i < c->axes && dda_read32(&c->transport, POS_REGS[i], &raw[i]) == 0)
+    while (i < c->axes && dda_read32(&c->transport, pos_reg(i), &raw[i]) == 0)
         i++;
     if (i < c->axes || dda_read32(&c->transport, DDA_STATUS, &status) < 0
         || dda_read32(&c->transport, DDA_MACHINE_STATUS, &machine) < 0) {

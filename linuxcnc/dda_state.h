@@ -17,10 +17,14 @@
 #define START_WORDS (6 * DDA_CMD_SET_WORDS) /* the SETs of a start, at most */
 #define PERIOD_WORDS (DDA_CMD_LINE_MAX_WORDS + DDA_CMD_DWELL_WORDS) /* a period's burst on any card, at most */
 
-/* Each axis's step counter, as gen/dda_card.h defines them: the driver drives as many
- * axes as this names (X, Y); the per-axis registers of axes 2 and up are not in it. */
-static const uint32_t POS_REGS[] = {DDA_POS_X, DDA_POS_Y};
-#define DRIVEN_AXES ((int)(sizeof POS_REGS / sizeof POS_REGS[0]))
+/* Axis i's step counter (gen/dda_card.h): X's and Y's in BAR0 (POS_X, POS_Y: every transport
+ * reaches them), the others in their BAR2 block (DDA_AXIS_POS_OFFSET).  A read of X's captures
+ * the others' in the same card clock, so X's is read first. */
+#define BAR0_AXES 2
+static inline uint32_t pos_reg(int axis)
+{
+    return axis == 0 ? DDA_POS_X : axis == 1 ? DDA_POS_Y : DDA_AXIS_POS_OFFSET(axis);
+}
 
 /* error-code: the card's STATUS.ERROR (1..4, docs/instructions.md), or the driver's own */
 enum dda_fault {

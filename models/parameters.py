@@ -169,6 +169,10 @@ _TABLE = (
     Parameter("io_bar_bits", 6, "BAR0 (I/O) of the stand-alone pci_slave unit is 2**bits bytes; "
               "the card sizes it from its register map", 2, 8,
               reason="PCI: I/O BARs of 4 to 256 bytes"),
+    Parameter("reg_bar_bits", 4, "BAR2 (memory) of the stand-alone pci_slave unit is 2**bits bytes, or BAR0's "
+              "size if larger; BAR0's registers sit at their offsets in it, the rest reaches the back end too; "
+              "the card's is 4 KiB (its per-axis register blocks, docs/pci.md)", 4, 16,
+              reason="16 bytes, PCI's smallest memory BAR, to 64 KiB"),
     Parameter("mem_bar_bits", 12, "BAR1 (memory) of the stand-alone pci_slave unit is 2**bits bytes; "
               "the card's is 4 KiB", 4, 24, reason="16 bytes, PCI's smallest memory BAR, to 16 MiB"),
 )

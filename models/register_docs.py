@@ -4,7 +4,9 @@ rewrites the docs."""
 from pathlib import Path
 
 from models import instructions
-from models.registers import IO_BAR_BITS, REGISTERS, VERSION, VERSIONS, build_word
+from models.axes import AXIS_NAMES
+from models.registers import (AXIS_BLOCK_BASE, AXIS_REGISTERS, AXIS_STRIDE, BAR0_AXES, IO_BAR_BITS, REG_BAR_BITS,
+                              REGISTERS, VERSION, VERSIONS, axis_offset, axis_register, build_word)
 
 
 def markdown():
@@ -16,10 +18,11 @@ def markdown():
         "",
         f"The I/O BAR (BAR0) is {1 << IO_BAR_BITS} bytes (`io_bar_bits` = {IO_BAR_BITS}); registers are",
         "32-bit, dword aligned.  Unlisted offsets read 0 and ignore writes.  BAR2, a",
-        "32-bit non-prefetchable memory BAR of the same size, holds the same registers at the",
+        f"32-bit non-prefetchable memory BAR of {(1 << REG_BAR_BITS) // 1024} KiB, holds the same registers at the",
         "same offsets with the same behaviour (byte enables, clamping, write 1 to clear, read",
-        "side effects), for hosts without port I/O; a burst into it moves one dword and is",
-        "disconnected (docs/pci.md).",
+        "side effects), for hosts without port I/O, and after them the per-axis register",
+        "blocks (below: [Per-axis register blocks](#per-axis-register-blocks-bar2)); a burst into",
+        "it moves one dword and is disconnected (docs/pci.md).",
         "",
         "CLOCK_HZ, FIFO_SIZE and BUILD hold the parameters the card was built with",
         "(`python -m rtl.top --help` lists them); their reset column shows the default build's",
@@ -47,14 +50,59 @@ def markdown():
     for reg in REGISTERS:
         lines += [f"## {reg.name} ({reg.offset:#04x}, {reg.access})", "", reg.text, "",
                   "| bits | field | description |", "| --- | --- | --- |"]
-        for item in reg.fields:
-            bits = f"{item.lsb + item.width - 1}:{item.lsb}" if item.width > 1 else f"{item.lsb}"
-            kind = " (signed)" if item.signed else ""
-            if item.cleared is not None:
-                kind += f"; cleared by the hardware {item.cleared}"
-            lines.append(f"| {bits} | {item.name} | {item.text}{kind} |")
+        lines += [_field_row(item) for item in reg.fields]
         lines.append("")
-    return "\n".join(lines)
+    return "\n".join(lines + _axis_markdown())
+
+
+def _axis_markdown():
+    """The per-axis blocks' part of ``docs/registers.md``."""
+    lines = [
+        "## Per-axis register blocks (BAR2)",
+        "",
+        f"Every axis the card has (BUILD.AXES; {', '.join(AXIS_NAMES)} are axes 0 to {len(AXIS_NAMES) - 1}) has a block of",
+        f"registers in BAR2 at {AXIS_BLOCK_BASE:#05x} + {AXIS_STRIDE:#04x} * axis (`DDA_AXIS_BLOCK_BASE`,",
+        "`DDA_AXIS_STRIDE`, `DDA_AXIS_<REG>_OFFSET(axis)` in `gen/dda_card.h`); the offsets below are",
+        "inside the block.  The blocks of X and Y hold BAR0's own registers (the same",
+        "flip-flops, reached at both offsets, with the same side effects): " + ", ".join(
+            f"{spec.name} = {'/'.join(axis_register(spec.name, axis).name for axis in range(BAR0_AXES))}"
+            for spec in AXIS_REGISTERS) + ".",
+        "The blocks of Z, A, B and C are BAR2's only (the I/O BAR keeps to PCI's 256 bytes).",
+        "A block offset no register uses, and the block of an axis the build lacks, read 0",
+        "and ignore writes, as every unlisted offset does; the rest of each block is kept for",
+        "the axis's next registers (encoder inputs).",
+        "",
+        "Positions at one instant: a read of X's POS (POS_X, in BAR0 or at",
+        f"{axis_offset('POS', 0):#05x}) returns X's position and captures every other axis's in the same",
+        "clock; POS of Y, Z, ... (POS_Y included) read what that read captured.  Read X's",
+        "first, then the others.",
+        "",
+        "| block offset | name | access | reset | min | max | description |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for reg in AXIS_REGISTERS:
+        lines.append(f"| {reg.offset:#04x} | {reg.name} | {reg.access} | {reg.reset:#x} | {_blank(reg.minimum)} | "
+                     f"{_blank(reg.maximum)} | {reg.text} |")
+    lines += ["", "| axis | block | " + " | ".join(reg.name for reg in AXIS_REGISTERS) + " |",
+              "| --- | --- | " + " | ".join("---" for _ in AXIS_REGISTERS) + " |"]
+    for axis, name in enumerate(AXIS_NAMES):
+        cells = [f"{axis_offset(reg.name, axis):#05x} ({axis_register(reg.name, axis).name})" for reg in AXIS_REGISTERS]
+        lines.append(f"| {axis} {name} | {AXIS_BLOCK_BASE + AXIS_STRIDE * axis:#05x} | " + " | ".join(cells) + " |")
+    lines.append("")
+    for reg in AXIS_REGISTERS:
+        lines += [f"### {reg.name} (block {reg.offset:#04x}, {reg.access})", "", reg.text, "",
+                  "| bits | field | description |", "| --- | --- | --- |"]
+        lines += [_field_row(item) for item in reg.fields]
+        lines.append("")
+    return lines
+
+
+def _field_row(item):
+    bits = f"{item.lsb + item.width - 1}:{item.lsb}" if item.width > 1 else f"{item.lsb}"
+    kind = " (signed)" if item.signed else ""
+    if item.cleared is not None:
+        kind += f"; cleared by the hardware {item.cleared}"
+    return f"| {bits} | {item.name} | {item.text}{kind} |"
 
 
 def _version(number):
@@ -95,10 +143,35 @@ def c_header(prefix="DDA", extra="", values=None):
             lines.append(f"#define {name}_MIN ({reg.minimum})")
             lines.append(f"#define {name}_MAX ({reg.maximum})")
         lines.append("")
+    lines += _axis_c_lines(prefix)
     if extra:
         lines += [extra.rstrip("\n"), ""]
     lines += [f"#endif /* {guard} */", ""]
     return "\n".join(lines)
+
+
+def _axis_c_lines(prefix):
+    """The per-axis blocks' C macros: the block's place, and per register its
+    offset inside the block, ``_OFFSET(axis)`` in BAR2, reset, fields, bounds."""
+    name = f"{prefix}_AXIS"
+    lines = ["/* Per-axis register blocks, BAR2 only: axis i (0 X, 1 Y, 2 Z, 3 A, 4 B, 5 C; BUILD.AXES of them)",
+             " * at BLOCK_BASE + STRIDE * i.  X's and Y's hold BAR0's registers (POS = POS_X / POS_Y, ...).",
+             " * A read of X's POS captures the other axes' POS: read it first. */",
+             f"#define {name}_BLOCK_BASE 0x{AXIS_BLOCK_BASE:03X}u",
+             f"#define {name}_STRIDE 0x{AXIS_STRIDE:02X}u",
+             f"#define {name}_BLOCK(axis) ({name}_BLOCK_BASE + {name}_STRIDE * (unsigned)(axis))", ""]
+    for reg in AXIS_REGISTERS:
+        reg_name = f"{name}_{reg.name}"
+        lines += [f"#define {reg_name} 0x{reg.offset:02X}u /* inside the block */",
+                  f"#define {reg_name}_OFFSET(axis) ({name}_BLOCK(axis) + {reg_name})",
+                  f"#define {reg_name}_RESET 0x{reg.reset:08X}u"]
+        for item in reg.fields:
+            lines += [f"#define {reg_name}_{item.name}_SHIFT {item.lsb}u",
+                      f"#define {reg_name}_{item.name}_MASK 0x{item.mask:08X}u"]
+        if reg.minimum is not None:
+            lines += [f"#define {reg_name}_MIN ({reg.minimum})", f"#define {reg_name}_MAX ({reg.maximum})"]
+        lines.append("")
+    return lines
 
 
 DOCS_BEGIN = "<!-- generated from models/instructions.py: begin -->"

@@ -1,6 +1,11 @@
-"""The card's function registers (I/O BAR0, and memory BAR2 at the same offsets), described once.
+"""The card's function registers (I/O BAR0, and memory BAR2 at the same
+offsets, then BAR2's per-axis blocks), described once.
 
-``REGISTERS`` is the single table.  From it come the RTL decoder
+``REGISTERS`` is the single table of BAR0, ``AXIS_REGISTERS`` the list every
+axis of the build has in BAR2 (``axis_offset``: ``AXIS_BLOCK_BASE +
+AXIS_STRIDE * axis`` plus the register's offset in the block); for X and Y
+they are BAR0's own registers (POS_X, PULSE_PERIOD_X, ...), reached at both
+offsets, and for Z, A, B, C registers of their own (``axis_registers``).  From it come the RTL decoder
 (``rtl/regs_fifo.py`` builds one ``reg_word`` per entry), ``docs/registers.md``
 and the C header the converter writes into ``gen/`` (both
 ``models/register_docs.py``) and the map the host benches use (``offset``, ``field_value``,
@@ -32,9 +37,10 @@ ID.VERSION: the major version (bits 15:8) changes when a register or field
 moves or changes meaning, the minor version (bits 7:0) when registers or
 fields are added; ``VERSIONS`` says what each version added.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from models import parameters
+from models.axes import AXIS_NAMES
 
 ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
 WORD_BYTES = 4
@@ -53,6 +59,9 @@ VERSIONS = (
              "DRIVE_ENABLE stays high until a STEP pulse under way has ended (docs/machine.md)"),
     (0x0201, "STEP_SPACE (the STEP low time; STEP_WIDTH is the high time only) and STEP_MODE (step/dir, "
              "up/down, quadrature); the registers also in memory space, BAR2 (docs/pci.md)"),
+    (0x0202, "BAR2 grows to 4 KiB: a register block per axis at 0x100 + 0x40 * axis (POS, PULSE_PERIOD, "
+             "PULSE_COUNT; X's and Y's are POS_X, PULSE_PERIOD_X, ... again), direct pulses on every axis; "
+             "a POS_X read snapshots every other axis's position; DIR_POLARITY.Z .. C"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
@@ -193,7 +202,7 @@ REGISTERS = (
              _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this"), minimum=0, maximum=0xFFFF),
     Register("MARK_TAG", 0x1C, "RO", 0, "tag of the last MARK reached",
              _one("TAG", 16, "the MARK command's tag")),
-    Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y",
+    Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y (and every other axis's POS)",
              _one("STEPS", 32, "steps that left the X pins, signed", signed=True)),
     Register("POS_Y", 0x24, "RO", 0, "Y position captured by the last POS_X read",
              _one("STEPS", 32, "steps that left the Y pins, signed", signed=True)),
@@ -216,10 +225,9 @@ REGISTERS = (
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=4),
     Register("DIR_HOLD", 0x3C, "RW", 1, "DIR stable after the STEP trailing edge, in clocks",
              _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=5),
-    Register("DIR_POLARITY", 0x40, "RW", 0, "DIR pin polarity", (
-        Field("X", 0, 1, "1: invert the X DIR pin"),
-        Field("Y", 1, 1, "1: invert the Y DIR pin"),
-    )),
+    Register("DIR_POLARITY", 0x40, "RW", 0, "DIR pin polarity (bit n: axis n; a card of fewer axes keeps the "
+             "bits of those it lacks, unused)",
+             tuple(Field(name, bit, 1, f"1: invert the {name} DIR pin") for bit, name in enumerate(AXIS_NAMES))),
     Register("PULSE_PERIOD_X", 0x44, "RW", 2, "clocks between direct X pulses",
              _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=6),
     Register("PULSE_PERIOD_Y", 0x48, "RW", 2, "clocks between direct Y pulses",
@@ -317,9 +325,62 @@ REGISTERS = (
                   "queued"), minimum=0, maximum=2),
 )
 
+# The per-axis blocks, in BAR2 only (the I/O BAR0 keeps to PCI's 256 bytes): block i, for axis i,
+# at AXIS_BLOCK_BASE + AXIS_STRIDE * i; offsets below are inside the block, the axis's own
+# registers first, the rest of the block free for more (reads 0, writes ignored).
+REG_BAR_BITS = 12   # BAR2: 4 KiB, BAR0's registers at 0x000..0x0FF, then the blocks
+AXIS_BLOCK_BASE = 0x100
+AXIS_STRIDE = 0x40
+AXIS_REGISTERS = (
+    Register("POS", 0x00, "RO", 0, "the axis's position in steps: X's live, the others' as a read of X's "
+             "(POS_X, in BAR0 or block 0) captured them, one instant for all",
+             _one("STEPS", 32, "steps that left the axis's pins, signed", signed=True)),
+    Register("PULSE_PERIOD", 0x04, "RW", 2, "clocks between the axis's direct pulses",
+             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+    Register("PULSE_COUNT", 0x08, "WP", 0, "direct mode: write a signed count of the axis's pulses; read what is left",
+             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+                  signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+)
+BAR0_AXES = 2   # X and Y: their block registers are BAR0's (POS_X, ...)
+
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
 SET_TARGETS = {r.set_index: r for r in REGISTERS if r.set_index is not None}
 _BY_NAME = {r.name: r for r in REGISTERS}
+_AXIS_BY_NAME = {r.name: r for r in AXIS_REGISTERS}
+
+
+def _axis_spec(name):
+    try:
+        return _AXIS_BY_NAME[name]
+    except KeyError:
+        raise ValueError(f"no per-axis register {name}") from None
+
+
+def axis_offset(name, axis):
+    """Byte offset in BAR2 of the per-axis register ``name`` (POS, ...) of axis ``axis`` (0: X)."""
+    if not 0 <= axis < len(AXIS_NAMES):
+        raise ValueError(f"axis {axis} is not 0..{len(AXIS_NAMES) - 1}")
+    return AXIS_BLOCK_BASE + AXIS_STRIDE * axis + _axis_spec(name).offset
+
+
+def axis_register(name, axis):
+    """The per-axis register ``name`` of axis ``axis``: for X and Y BAR0's own
+    (POS_X, ...), else one named POS_Z, ... at its BAR2 offset."""
+    full = f"{_axis_spec(name).name}_{AXIS_NAMES[axis]}"
+    if axis < BAR0_AXES:
+        return register(full)
+    return replace(_axis_spec(name), name=full, offset=axis_offset(name, axis))
+
+
+def axis_registers(axes):
+    """The registers a card of ``axes`` axes has in BAR2's blocks only (those of Z, A, ...), by offset."""
+    return tuple(axis_register(spec.name, axis) for axis in range(BAR0_AXES, axes) for spec in AXIS_REGISTERS)
+
+
+def axis_aliases():
+    """{BAR2 offset: BAR0 offset} of X's and Y's block registers, which are BAR0's."""
+    return {axis_offset(spec.name, axis): axis_register(spec.name, axis).offset
+            for axis in range(BAR0_AXES) for spec in AXIS_REGISTERS}
 
 
 def register(name):
@@ -331,7 +392,7 @@ def register(name):
 
 
 def offset(name):
-    """Byte offset of register ``name`` in the I/O BAR."""
+    """Byte offset of register ``name`` in the I/O BAR (and in BAR2)."""
     return register(name).offset
 
 
@@ -354,39 +415,8 @@ def field_of(reg_name, **values):
     return word
 
 
-def check_table(registers=REGISTERS):
-    """Raise ValueError when the table contradicts itself."""
-    offsets, set_indices = set(), set()
-    for reg in registers:
-        if reg.access not in ACCESS_KINDS:
-            raise ValueError(f"{reg.name}: unknown access {reg.access}")
-        if reg.offset % WORD_BYTES or reg.offset in offsets:
-            raise ValueError(f"{reg.name}: offset {reg.offset:#x} misaligned or used twice")
-        offsets.add(reg.offset)
-        used = 0
-        for item in reg.fields:
-            if item.mask & used or item.lsb + item.width > 32:
-                raise ValueError(f"{reg.name}.{item.name}: overlaps or exceeds 32 bits")
-            used |= item.mask
-        if reg.reset & ~used & 0xFFFFFFFF:
-            raise ValueError(f"{reg.name}: reset value sets bits outside its fields")
-        if reg.set_index is not None:
-            if reg.set_index in set_indices or reg.access != "RW":
-                raise ValueError(f"{reg.name}: SET index reused or register not RW")
-            set_indices.add(reg.set_index)
-        if (reg.minimum is not None or reg.maximum is not None) and len(reg.fields) != 1:
-            raise ValueError(f"{reg.name}: only one-field registers can clamp")
-        if reg.access in ("RW", "WP") and len(reg.fields) == 1 and reg.fields[0].width > 1 and (
-                reg.minimum is None or reg.maximum is None):
-            # a number the host writes: without a range a too-large write would be cut to the
-            # field's width (a WATCHDOG of 2**24 would read 0: off) instead of clamped and flagged
-            raise ValueError(f"{reg.name}: a one-value register the host writes declares its range")
-        for item in reg.fields:
-            if item.cleared is not None and reg.access != "RW":
-                raise ValueError(f"{reg.name}.{item.name}: only an RW field is cleared by the hardware")
-            if item.build is not None and (reg.access != "RO" or item.build not in parameters.PARAMETERS):
-                raise ValueError(f"{reg.name}.{item.name}: a build field is read-only and names a "
-                                 f"build parameter, not {item.build!r}")
-
+# the checks live beside the table (models/register_checks.py); the table is checked as it loads
+from models.register_checks import check_axis_block, check_table  # noqa: E402
 
 check_table()
+check_axis_block()

@@ -56,7 +56,8 @@ Unit = namedtuple("Unit", "names port_names")
 _CARD = ("fifo_depth", "coord_width", "clock_hz", "variants", "device", "axes", *PCI_IDS)
 UNITS = {
     "dda_arc": Unit(("coord_width", "variants"), ("coord_width", "variants")),
-    "pci_slave": Unit((*PCI_IDS, "io_bar_bits", "mem_bar_bits", "device"), ("io_bar_bits", "mem_bar_bits")),
+    "pci_slave": Unit((*PCI_IDS, "io_bar_bits", "mem_bar_bits", "reg_bar_bits", "device"),
+                      ("io_bar_bits", "mem_bar_bits", "reg_bar_bits")),
     "regs_fifo": Unit(("fifo_depth", "clock_hz", "device", "coord_width", "variants", "axes"),
                       ("coord_width", "variants", "axes")),
     "card": Unit(_CARD, ("axes",)),
@@ -104,8 +105,8 @@ def write_c_header(out_dir=GEN_DIR, **values):
                 for name, value in build.view(PCI_IDS).items()]
     identity += [f"#define DDA_BAR0_SIZE {1 << bars.io_bar_bits}u /* I/O: function registers */",
                  f"#define DDA_BAR1_SIZE {1 << bars.mem_bar_bits}u /* memory: the command FIFO window */",
-                 f"#define DDA_BAR2_SIZE {1 << alias_bar_bits(bars.io_bar_bits)}u"
-                 " /* memory: the function registers again, at BAR0's offsets */",
+                 f"#define DDA_BAR2_SIZE {1 << alias_bar_bits(bars.io_bar_bits, bars.reg_bar_bits)}u"
+                 " /* memory: the function registers at BAR0's offsets, then the per-axis blocks */",
                  f"#define DDA_FIFO_DEPTH {build.fifo_depth}u /* words */", ""]
     identity += [f"#define DDA_STOP_{name} {code}u /* STOP_REASON.REASON */"
                  for code, name in enumerate(STOP_REASONS) if code] + [""]

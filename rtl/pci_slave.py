@@ -7,6 +7,13 @@ The paper's states keep their names in code spelling: ``S_IDLE`` (Idle),
 ``S_BACKOFF``: STOP# asserted, waiting for FRAME# to go (retry, disconnect,
 target abort).  ``docs/pci.md`` maps them and explains the timing.
 
+Its units (``rtl/pci/``): ``pci_boundary`` (the input and output registers
+at the bus), ``pci_decode`` (the claim), ``pci_control`` (the state
+machine's next values), ``pci_transaction`` (the state and the transaction's
+registers), ``pci_requests`` (the back-end requests), ``pci_buffers`` (read
+and posted write data), ``pci_parity``, ``pci_config`` (the configuration
+header); this block names their signals and wires them.
+
 Timing architecture: AD, C/BE# and IDSEL are sampled into an input register
 before any logic, and every PCI output and output enable but PAR comes
 from a flip-flop.  Three inputs also reach a register through logic,
@@ -20,27 +27,28 @@ registered parity and the C/BE# input register, one LUT level after
 flip-flops on the way out, where PCI's 11 ns leave room (the 7 ns of
 set-up do not).  The registered address makes DEVSEL# timing MEDIUM.
 """
-from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, instances, intbv, modbv
+from myhdl import Signal, always_comb, block, instances, intbv, modbv
 
 from models.parameters import Build
-from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBuffers, TargetControlNext, TargetDecode, TargetParity,
-                            TargetRequests, TargetState, card_reset)
+from rtl.interfaces import (ConfigSpace, LocalBus, PciBus, TargetBoundary, TargetBuffers, TargetControlNext, TargetDecode,
+                            TargetParity, TargetRequests, TargetState, TargetTransaction, card_reset)
+from rtl.pci.pci_boundary import pci_boundary
 from rtl.pci.pci_buffers import pci_buffers
 from rtl.pci.pci_config import pci_config
 from rtl.pci.pci_control import pci_control, t_state
 from rtl.pci.pci_decode import pci_decode
 from rtl.pci.pci_parity import pci_parity
 from rtl.pci.pci_requests import pci_requests
-from rtl.pci.pci_slave_build import (INITIAL_WAIT_LIMIT, SUBSEQUENT_WAIT_LIMIT, check_io_registers, last_dword,
-                                      local_addr_width)
+from rtl.pci.pci_slave_build import check_io_registers, local_addr_width
+from rtl.pci.pci_transaction import pci_transaction
 from rtl.pci.pin_lut import pin_lut
 
 
-def pci_slave_ports(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits):
+def pci_slave_ports(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits, reg_bar_bits=Build.reg_bar_bits):
     """Fresh ports of ``pci_slave`` for BARs of these sizes (conversion and
     benches): ``local`` has ``local_addr_width`` address bits."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(),
-                local=LocalBus(local_addr_width(io_bar_bits, mem_bar_bits)), irq=Signal(bool(0)))
+                local=LocalBus(local_addr_width(io_bar_bits, mem_bar_bits, reg_bar_bits)), irq=Signal(bool(0)))
 
 
 # ``build``: a ``Build`` (``models/parameters.py``); the parameters the docstring
@@ -51,14 +59,15 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
 
     Ports: ``clock`` PCI CLK; ``reset`` RST# (``card_reset()``); ``pci`` a
     ``PciBus``; ``local`` a ``LocalBus`` of ``local_addr_width()`` address
-    bits (space 0: the registers, through BAR0, I/O, or its alias BAR2,
-    memory, BAR0's size; space 1: BAR1, memory); ``irq`` level interrupt
+    bits (space 0: the registers, through BAR0, I/O, or BAR2, memory, which
+    holds them at BAR0's offsets and may be larger; space 1: BAR1, memory); ``irq`` level interrupt
     request, drives INTA# unless Command.Interrupt Disable is set.
 
     Parameters: vendor_id, device_id, revision_id, class_code (24 bits),
     subsystem_vendor_id, subsystem_id; io_bar_bits (BAR0 is 2**io_bar_bits
-    bytes; BAR2 the same, 16 bytes at least, BAR0 repeating in them),
-    mem_bar_bits (BAR1 is
+    bytes), reg_bar_bits (BAR2 is 2**reg_bar_bits bytes, BAR0's size at
+    least: BAR0's registers at their offsets, the rest reaching the back end
+    too; a BAR0 under 16 bytes repeats in BAR2's 16), mem_bar_bits (BAR1 is
     2**mem_bar_bits bytes); device (how the
     one-LUT paths from FRAME#, IRDY# and PAR are written: ``rtl/pci/pin_lut.py``);
     defaults and ranges in ``models/parameters.py``;
@@ -95,11 +104,10 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
         room    ~~~~~~~~~~~~~~~~~~~~~~~~~~~~\\_______ ...
     """
     io_registers = check_io_registers(io_registers)
-    io_bits, mem_bits, device = build.io_bar_bits, build.mem_bar_bits, build.device
-    width = local_addr_width(io_bits, mem_bits) - 2   # dword address counters
+    io_bits, mem_bits, reg_bits, device = build.io_bar_bits, build.mem_bar_bits, build.reg_bar_bits, build.device
+    width = local_addr_width(io_bits, mem_bits, reg_bits) - 2   # dword address counters
     if len(local.addr) != width + 2:
         raise ValueError(f"pci_slave: local.addr must have {width + 2} bits, has {len(local.addr)}")
-    mem_last = last_dword(mem_bits)                    # last dword of BAR1
 
     # --- input register: the bus as sampled at the last edge ---
     ad_q = pci.ad_in if io_registers else Signal(intbv(0)[32:])
@@ -116,10 +124,6 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
     devsel_next, drive_next, ad_oe_next = chosen.devsel, chosen.drive, chosen.ad_oe
     trdy_q, stop_q, devsel_q = Signal(bool(1)), Signal(bool(1)), Signal(bool(1))
     ad_out_q = Signal(intbv(0)[32:])
-    # with io_registers the I/O cells register ad_out_next and have no enable:
-    # one LUT per bit after IRDY# (``ad_output_luts``)
-    ad_out_bits = [Signal(bool(0)) for _ in range(32)] if io_registers else []
-    ad_out_next = ConcatSignal(*reversed(ad_out_bits)) if io_registers else Signal(intbv(0)[32:])
     ad_parity_q = Signal(bool(0))     # parity of the AD driven in the clock before
     perr_q = Signal(bool(1))
 
@@ -195,19 +199,15 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
     # with phase_addr, so the state machine sees no address compare
     at_last, before_last = Signal(bool(0)), Signal(bool(0))
 
-    # ------------------------------------------------------------ input stage
-    if not io_registers:
-        @always_seq(clock.posedge, reset=reset)
-        def input_register():
-            ad_q.next = pci.ad_in
-            cbe_q.next = pci.cbe_in
-            idsel_q.next = pci.idsel_in
-
-    @always_seq(clock.posedge, reset=reset)
-    def control_input_register():
-        frame_q.next = pci.frame_in
-        frame_qq.next = frame_q
-        irdy_q.next = pci.irdy_in
+    # ------------------------------------------------------------ bus boundary
+    boundary = TargetBoundary(
+        ad=ad_q, cbe=cbe_q, idsel=idsel_q, frame_q=frame_q, frame_qq=frame_qq, irdy_q=irdy_q, trdy_q=trdy_q,
+        trdy_next=trdy_next, stop_q=stop_q, stop_next=stop_next, devsel_q=devsel_q, devsel_next=devsel_next,
+        drive_next=drive_next, ad_oe_next=ad_oe_next, ad_out=ad_out_q, read_source=read_source,
+        ad_parity_q=ad_parity_q, ad_out_parity=ad_out_parity, perr_q=perr_q, perr_next=perr_next,
+        perr_oe_next=perr_oe_next, serr_oe_next=serr_oe_next, parity_error_q=parity_error_q,
+        parity_error_next=parity_error_next, irq=irq, interrupt_disable=interrupt_disable)
+    boundary_unit = pci_boundary(clock, reset, pci, boundary, device=device, io_registers=io_registers)
 
     parity_unit = pci_parity(pci.par_in, parity, device=device)
 
@@ -217,7 +217,7 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
                            address_phase=address_phase, claim=claim, claim_config=claim_config,
                            claim_io=claim_io, claim_alias=claim_alias, read_command=read_command,
                            start_addr=start_addr)
-    decode_unit = pci_decode(decoder, io_bits=io_bits, mem_bits=mem_bits)
+    decode_unit = pci_decode(decoder, io_bits=io_bits, mem_bits=mem_bits, reg_bits=reg_bits)
 
     # A data phase completes when the IRDY# pin and TRDY# (trdy_q) are both
     # low; each register it changes has its next value in one LUT after the pin.
@@ -258,14 +258,6 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
             read_source.next = local.rdata
 
     # ------------------------------------------------------------ state machine
-    @always_comb
-    def latency():
-        target_waits = (trdy_q and stop_q and state != t_state.S_IDLE
-                        and state != t_state.S_BACKOFF and state != t_state.S_ENDING)
-        waiting.next = target_waits
-        timeout.next = target_waits and (
-            (first_phase and initial_wait_over) or (not first_phase and subsequent_wait_over))
-
     target = TargetState(
         t_state.S_IDLE, state=state, single=single, at_last=at_last, before_last=before_last,
         is_read=is_read, is_config=is_config, first_phase=first_phase, fetching=fetching,
@@ -276,123 +268,17 @@ def pci_slave(clock, reset, pci, local, irq, *, build=Build(), io_registers=Fals
         hold_retry=hold_retry)
     next_state = pci_control(pci.frame_in, pci.irdy_in, target, chosen, device=device)
 
-    @always_seq(clock.posedge, reset=reset)
-    def phase_registers():
-        state.next = state_next
-        first_phase.next = first_phase_next
-        address_fault.next = address_fault_next
-        if phase_step:   # the claim, or a completed phase of a memory burst
-            if claim:
-                phase_addr.next = start_addr
-                at_last.next = start_addr == mem_last
-                before_last.next = start_addr == mem_last - 1
-            else:
-                phase_addr.next = phase_addr + 1
-                at_last.next = before_last
-                before_last.next = phase_addr == mem_last - 2
-
-    @always_seq(clock.posedge, reset=reset)
-    def transaction_kind():
-        # taken at every address phase in Idle, claimed or not (Idle reads none
-        # of it): the BAR compares reach only the state and the bus lines
-        if state == t_state.S_IDLE and address_phase:
-            is_read.next = not cbe_q[0]
-            is_config.next = claim_config
-            # BAR2 reaches the registers (space 0) as BAR0 does, one dword a
-            # transaction: a burst is disconnected after its first data phase
-            space_mem.next = not claim_config and not claim_io and not claim_alias
-            single.next = claim_config or claim_io or claim_alias or ad_q[0] or ad_q[1]
-            first_pending.next = True
-            fetching.next = not cbe_q[0] and not claim_config
-            io_byte.next = ad_q[2:0]
-        else:
-            if got or accepted:
-                first_pending.next = first_pending and draining
-            if local.re and local.ready and (single or req_addr == mem_last):
-                fetching.next = False
-            if local.re and local.retry and not first_pending:
-                fetching.next = False
-
-    @always_seq(clock.posedge, reset=reset)
-    def request_address():
-        if claim:
-            req_addr_stale.next = draining
-        # loaded at an address phase in Idle, claimed or not, with no posted
-        # data left: a claim finds it loaded, the BAR compare not before it
-        if (local.re or local.we) and local.ready:
-            req_addr.next = req_addr + 1
-        elif state == t_state.S_IDLE and address_phase and not draining:
-            req_addr.next = start_addr
-            req_addr_stale.next = False
-        elif req_addr_stale and not draining:
-            req_addr.next = phase_addr
-            req_addr_stale.next = False
-
-    @always_seq(clock.posedge, reset=reset)
-    def latency_count():
-        # Idle (the only state with a claim) never waits
-        if not waiting:
-            wait_count.next = 0
-            initial_wait_over.next = False
-            subsequent_wait_over.next = False
-        elif not timeout:
-            wait_count.next = wait_count + 1
-            initial_wait_over.next = wait_count == INITIAL_WAIT_LIMIT - 1
-            subsequent_wait_over.next = wait_count == SUBSEQUENT_WAIT_LIMIT - 1
-
-    # ------------------------------------------------------------ data registers
-    # The AD register takes new data unless the master has yet to take the
-    # data on the bus (fast path: one LUT from IRDY#, as the register's
-    # enable or, for the I/O cells, per bit).
-    if io_registers:
-        ad_output_luts = [
-            pin_lut(ad_out_bits[bit], lambda irdy, trdy, held, fresh: int(
-                held if irdy and not trdy else fresh),
-                pci.irdy_in, trdy_q, ad_out_q(bit), read_source(bit), device=device) for bit in range(32)]
-    else:
-        @always_comb
-        def ad_output():
-            if pci.irdy_in and not trdy_q:   # TRDY# asserted, the master not ready
-                ad_out_next.next = ad_out_q
-            else:
-                ad_out_next.next = read_source
-
-    @always_seq(clock.posedge, reset=reset)
-    def bus_registers():
-        trdy_q.next = trdy_next
-        stop_q.next = stop_next
-        devsel_q.next = devsel_next
-        ad_out_q.next = ad_out_next
-        perr_q.next = perr_next
-        ad_parity_q.next = ad_out_parity
-        pci.trdy_oe.next = drive_next
-        pci.stop_oe.next = drive_next
-        pci.devsel_oe.next = drive_next
-        pci.ad_oe.next = ad_oe_next
-        pci.par_oe.next = pci.ad_oe
-        pci.perr_oe.next = perr_oe_next
-        pci.serr_out.next = False
-        pci.serr_oe.next = serr_oe_next
-        parity_error_q.next = parity_error_next
-        pci.inta_out.next = False
-        pci.inta_oe.next = irq and not interrupt_disable
-
-    if io_registers:
-        @always_comb
-        def pins():
-            pci.trdy_out.next = trdy_next
-            pci.stop_out.next = stop_next
-            pci.devsel_out.next = devsel_next
-            pci.ad_out.next = ad_out_next
-            pci.perr_out.next = perr_next
-    else:
-        @always_comb
-        def pins():
-            pci.trdy_out.next = trdy_q
-            pci.stop_out.next = stop_q
-            pci.devsel_out.next = devsel_q
-            pci.ad_out.next = ad_out_q
-            pci.perr_out.next = perr_q
+    transaction = TargetTransaction(
+        t_state.S_IDLE, width, state_next=state_next, first_phase_next=first_phase_next,
+        address_fault_next=address_fault_next, phase_step=phase_step, claim=claim, claim_config=claim_config,
+        claim_io=claim_io, claim_alias=claim_alias, start_addr=start_addr, address_phase=address_phase, ad=ad_q,
+        cbe=cbe_q, trdy_q=trdy_q, stop_q=stop_q, got=got, accepted=accepted, draining=draining, state=state,
+        first_phase=first_phase, address_fault=address_fault, phase_addr=phase_addr, at_last=at_last,
+        before_last=before_last, is_read=is_read, is_config=is_config, space_mem=space_mem, single=single,
+        first_pending=first_pending, fetching=fetching, io_byte=io_byte, req_addr=req_addr,
+        req_addr_stale=req_addr_stale, wait_count=wait_count, initial_wait_over=initial_wait_over,
+        subsequent_wait_over=subsequent_wait_over, waiting=waiting, timeout=timeout)
+    transaction_unit = pci_transaction(clock, reset, transaction, local, mem_bits=mem_bits)
 
     # ------------------------------------------------------------ data buffers
     buffers = TargetBuffers(

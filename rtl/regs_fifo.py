@@ -2,18 +2,21 @@
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv
 
 from models import registers as regmap
+from models.axes import AXIS_NAMES
 from models.dda_build import variants_choice
 from models.parameters import COORD_WIDTH, Build
-from rtl.interfaces import (AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing, InputConditioning,
-                            LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings,
-                            ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords, StepPositions,
-                            StepRequest, card_reset)
+from rtl.interfaces import (AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
+                            InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl,
+                            RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords,
+                            StepPositions, StepRequest, card_reset)
 from rtl.machine.homing import homing
 from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
+from rtl.regs.axis_block import axis_block
 from rtl.regs.direct_pulse import direct_pulse
 from rtl.regs.feed_rate import feed_rate
 from rtl.regs.pulse_out import pulse_out
+from rtl.regs.pulse_source import pulse_source
 from rtl.regs.reg_word import reg_word
 from rtl.regs.sequencer import sequencer
 from rtl.regs.status_words import status_words
@@ -31,8 +34,10 @@ def _bit(name, field_name):
 def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=Build()):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
-    Ports: ``local`` (the target's back end; I/O BAR = the registers of
-    ``models/registers.py``, memory BAR = the FIFO: every data phase with a byte
+    Ports: ``local`` (the target's back end; space 0 = the registers of
+    ``models/registers.py``: BAR0's at their offsets, beyond them BAR2's
+    per-axis blocks, X's and Y's answered by BAR0's register words
+    (``reg_word``'s ``aliases``); space 1 = the FIFO: every data phase with a byte
     enabled pushes one word; ``local.room`` is high while the FIFO has
     three free places, the promise the target needs before it acknowledges
     a posted dword, and a write to a full FIFO answers ``retry``, so the
@@ -44,7 +49,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     outputs and resets the DDA; the FIFO keeps its words until
     COMMAND.CLEAR_STOP empties it, docs/machine.md); ``irq`` (level, to
     INTA#: INT_STATUS & INT_ENABLE, from ``status_words``, which also
-    assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y);
+    assembles STATUS, MACHINE_STATUS, STOP_REASON, MARK_TAG and POS_X/Y;
+    ``axis_block`` holds the positions a POS_X read captures); every axis
+    has its direct pulses (``pulse_source``, ``direct_pulse``);
     ``core_clear`` (one registered clock on
     COMMAND.SOFT_RESET or a stop: the top resets the DDA with it).
     Parameters (``models/parameters.py``): ``fifo_depth`` (words, a power of
@@ -59,7 +66,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     later, and a request in that clock waits one clock (PCI never asks that
     soon); an I/O read waits one clock: the registers' read chain ends in a
     register (``read_word``), so the PCI target's AD register is fed from a
-    flip-flop, and a read's side effect (POS_X holds POS_Y) happens once, at
+    flip-flop, and a read's side effect (POS_X captures the other axes' POS) happens once, at
     the edge that takes the word; ``room`` is the FIFO's own flag (three
     places free or more):
         clock    _/~\\_/~\\_/~\\_/~\\_
@@ -78,7 +85,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     if pins.axes != build.axes:
         raise ValueError(f"regs_fifo: pins of {pins.axes} axes, the build says {build.axes}")
     fifo_depth, axes = build.fifo_depth, build.axes
-    specs = regmap.REGISTERS
+    # BAR0's registers, then those only the per-axis blocks of Z, A, ... have (models/registers.py)
+    specs = regmap.REGISTERS + regmap.axis_registers(axes)
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
     read_waited, read_word = Signal(bool(0)), Signal(intbv(0)[32:])
@@ -102,6 +110,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     chain = [ReadChain() for _ in range(len(specs) + 1)]
     register_bus = RegisterBus(len(local.addr), addr=local.addr, write_addr=written_addr, write=io_written,
                                byte_mask=written_mask, wdata=written_data)
+    # X's and Y's per-axis block offsets in BAR2: their BAR0 registers answer there too
+    aliases = {bar0: (bar2,) for bar2, bar0 in regmap.axis_aliases().items()}
 
     set_port, mark = SetPort(), MarkPort()
     # named at this level, as the formal harness (formal/props) and the waves know them
@@ -111,9 +121,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     enable, clear_error, error_code = seq_control.enable, seq_control.clear_error, seq_control.error_code
     seq_busy, motion_run, discard_on_clear = seq_control.busy, seq_control.motion_run, seq_control.discard_on_clear
     clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
-    pulses = PulseCommand()
+    pulses = PulseCommand(axes)
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
-    # every axis's step requests; the DDA's ``steps`` and the direct pulses drive X and Y
+    # every axis's step requests: the DDA's ``steps`` (X and Y) and the direct pulses of every axis
     requests, granted = AxisPulses(axes), AxisPulses(axes)
     requested = ConcatSignal(*reversed([requests.step(axis) for axis in range(axes)]))
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
@@ -125,21 +135,24 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     outputs = PulseControl(axes, clear=pulse_clear, clear_position=clear_position, zero=zero,
                            width=values["STEP_WIDTH"], space=values["STEP_SPACE"], mode=step_mode,
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
-                           polarity_x=values["DIR_POLARITY"](0), polarity_y=values["DIR_POLARITY"](1))
+                           **{f"polarity_{name.lower()}": values["DIR_POLARITY"](axis)
+                              for axis, name in enumerate(AXIS_NAMES[:axes])})
     out_ready, out_active = outputs.ready, outputs.active
     position = StepPositions(axes)
-    direct = [DirectPulseCommand(clear=direct_clear, remaining=hw[f"PULSE_COUNT_{name}"]) for name in "XY"]
+    axis_names = AXIS_NAMES[:axes]
+    direct = [DirectPulseCommand(clear=direct_clear, remaining=hw[f"PULSE_COUNT_{name}"]) for name in axis_names]
     settled, direct_ready = Signal(bool(0)), Signal(bool(1))   # guard.held; direct pulses wait while stopping
-    direct_out = [StepRequest(ready=direct_ready) for _ in "XY"]
-    axis_load, axis_count, direct_busy = ([d.load for d in direct], [d.count for d in direct],
-                                          [d.busy for d in direct])
+    direct_out = [StepRequest(ready=direct_ready) for _ in axis_names]
+    direct_busy = ConcatSignal(*reversed([d.busy for d in direct]))
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
+    axis_regs = AxisBlock(axes, len(local.addr), addr=local.addr, read=io_read, positions=position,
+                          pos_words=[hw[f"POS_{name}"] for name in axis_names[2:]])
     feed = FeedPort(dda.coord_width, run=motion_run, stop_left=dda.stop_left)
     tick, hold = feed.tick, feed.hold
     fifo_flush, soft_reset_taken = Signal(bool(0)), Signal(bool(0))
     requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
     any_busy = Signal(bool(0))
-    pos_y_snapshot = Signal(position.y.val)
+    pos_y_snapshot = axis_regs.held.y
 
     drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
     drive_cleared, drive_mask = hw["MACHINE_CONTROL"], regmap.register("MACHINE_CONTROL").field("DRIVE_ENABLE").mask
@@ -148,15 +161,16 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
         units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
-                              chain_in=chain[i], chain_out=chain[i + 1]))
+                              chain_in=chain[i], chain_out=chain[i + 1], aliases=aliases.get(spec.offset, ())))
     units.append(sequencer(clock, reset, fifo=FifoRead(dout=fifo_dout, empty=fifo_empty, pop=fifo_pop),
                            control=seq_control, dda=dda, pulses=pulses, set_port=set_port, mark=mark,
                            set_indices=tuple(regmap.SET_TARGETS)))
     settings = RampSettings(target=values["FEED_RATE"], ramp_start=values["RAMP_START"],
                             ramp_step=values["RAMP_STEP"])
     units.append(feed_rate(clock, reset, settings=settings, feed=feed))
-    for axis in range(2):
+    for axis in range(axes):
         units.append(direct_pulse(clock, reset, command=direct[axis], out=direct_out[axis]))
+    units.append(axis_block(clock, reset, axis_regs, axes=axes))
     units.append(pulse_out(clock, reset, request=granted, control=outputs, pins=pins, position=position))
     conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
@@ -178,7 +192,6 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
     reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
                                                                                 "CLEAR_POSITION", "CLEAR_STOP"))
-    pos_x_offset = regmap.offset("POS_X")
     home_x, estop = regmap.INPUT_NAMES.index("HOME_X"), regmap.INPUT_NAMES.index("ESTOP")
     command_offset = regmap.offset("COMMAND")
 
@@ -297,10 +310,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     def zero_axes():
         zero.next = concat(intbv(0)[zero_pad:], home_zero)
 
-    position_y = position.y
-    direct_busy_x, direct_busy_y = direct_busy
-    direct_request_x, direct_request_y = direct_request
-    direct_dir_x, direct_dir_y = direct_dir
+    direct_request_x, direct_request_y = direct_request[:2]
+    direct_dir_x, direct_dir_y = direct_dir[:2]
 
     @always_seq(clock.posedge, reset=reset)
     def outputs_before():
@@ -308,20 +319,15 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         requested_before.next = requested != 0
         out_active_before.next = out_active
 
-    @always_seq(clock.posedge, reset=reset)
-    def snapshot():
-        if io_read and local.addr == pos_x_offset:
-            pos_y_snapshot.next = position_y
-
     @always_comb
     def pulse_activity():
-        pulse_busy.next = direct_busy_x or direct_busy_y
+        pulse_busy.next = direct_busy != 0
         # a step request is not yet in the pulse queue in its own clock, nor seen
         # in out_active_before in the next: both clocks are covered by the requests
         outputs_busy.next = requested != 0 or requested_before or out_active_before
         hold.next = not out_ready
         dda.advance.next = tick and out_ready and motion_run
-        any_busy.next = seq_busy or direct_busy_x or direct_busy_y or out_active or dda.busy or home.busy
+        any_busy.next = seq_busy or direct_busy != 0 or out_active or dda.busy or home.busy
 
     @always_comb
     def merge_requests():
@@ -330,16 +336,16 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         requests.dir_x.next = steps.dir_x if steps.step_x else direct_dir_x
         requests.dir_y.next = steps.dir_y if steps.step_y else direct_dir_y
 
-    units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
-              pulse_activity,
-              merge_requests, widen_level if level_pad else copy_level]
+    units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before,
+              pulse_activity, merge_requests, widen_level if level_pad else copy_level]
     if zero is not home_zero:
         units.append(zero_axes)
-    for axis, name in enumerate("XY"):
-        units.append(_axis_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"],
-                                  seq_load, (pulses.count_x, pulses.count_y)[axis], halt, axis_load[axis],
-                                  axis_count[axis], home, hw["HOME"](_bit("HOME", "AXIS")), axis, values[f"PULSE_PERIOD_{name}"],
-                                  direct[axis].period, direct[axis].retarget))
+    home_axis = hw["HOME"](_bit("HOME", "AXIS"))
+    for axis, name in enumerate(axis_names):
+        units.append(pulse_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"], halt,
+                                  values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))
+        if axis >= 2:   # the DDA's steps reach X and Y (dda.py), the direct pulses every axis
+            units.append(_direct_only(direct_out[axis], requests.step(axis), requests.dir(axis)))
     status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
@@ -352,29 +358,15 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
 
 
 @block
-def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, halt, load, count,
-                 home, home_axis, axis, pulse_period, period, retarget):
-    """Direct pulses come from PULSE_COUNT_* in direct mode, from PULSE commands
-    otherwise; none start while the guard halts.  While homing, the homing
-    sequencer drives those of the axis it homes (``home_axis``, this is ``axis``)
-    and the others wait."""
+def _direct_only(out, step, direction):
+    """An axis only the direct pulses drive: its step requests are theirs."""
 
     @always_comb
-    def choose_source():
-        period.next = pulse_period
-        retarget.next = home.busy and home.retarget and home_axis == axis
-        if home.busy:
-            load.next = home.load and home_axis == axis
-            count.next = home.count
-            period.next = home.period
-        elif direct_mode:
-            load.next = count_strobe and not halt
-            count.next = count_value.signed()
-        else:
-            load.next = seq_load
-            count.next = seq_count
+    def pass_on():
+        step.next = out.step
+        direction.next = out.dir
 
-    return choose_source
+    return pass_on
 
 
 def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes):

@@ -5,7 +5,7 @@ about which card it is:
 
 | call | what |
 | --- | --- |
-| ``read(offset, size=4)`` / ``write(offset, value, size=4)`` | BAR0 (I/O, the function registers), 1, 2 or 4 bytes, naturally aligned |
+| ``read(offset, size=4)`` / ``write(offset, value, size=4)`` | the function registers, 1, 2 or 4 bytes, naturally aligned: BAR0's offsets (I/O, or BAR2 where it aliases them), and beyond BAR0 BAR2's per-axis blocks |
 | ``fifo_write(words)`` | BAR1 (memory, the FIFO window): 32-bit words, each a single aligned store |
 | ``mem_read(offset, count=1)`` | BAR1 dwords (the FIFO window reads 0) |
 | ``config_read(register, size=4)`` | configuration space |

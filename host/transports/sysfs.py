@@ -235,7 +235,15 @@ class SysfsTransport(Transport):
         """True when the registers are reached through a mapped memory BAR (no system call)."""
         return self._regs is not None
 
+    def _unmapped_block(self, offset):
+        """TransportError for a per-axis block offset when only BAR0 reaches the registers."""
+        if self._regs is None and offset >= self.io_size:
+            raise TransportError(f"{self.address}: offset {offset:#x} is in BAR2's per-axis register blocks, "
+                                 "and BAR2 is not mapped (the registers go through BAR0, which has BAR0's "
+                                 f"{self.io_size} bytes only)")
+
     def read(self, offset, size=4):
+        self._unmapped_block(offset)
         check_access(offset, size, self.io_size)
         if self._regs is not None:
             return self._regs[size][offset // size]  # one aligned load of that size
@@ -245,6 +253,7 @@ class SysfsTransport(Transport):
         return int.from_bytes(data, "little")
 
     def write(self, offset, value, size=4):
+        self._unmapped_block(offset)
         check_access(offset, size, self.io_size)
         check_value(value, size)
         if self._regs is not None:

@@ -3,6 +3,7 @@ from myhdl import Signal, intbv, modbv
 
 from models import instructions as isa
 from models import registers as regmap
+from models.axes import XY_MASK
 from models.dda_build import COORD_WIDTH
 from models.parameters import AXES
 from rtl.interfaces.bundle import adopt, axis_suffixes
@@ -94,15 +95,24 @@ class SequencerControl:
 
 
 class PulseCommand:
-    """The PULSE command's seam: the sequencer drives ``load`` (one clock) with
-    the signed counts ``count_x``/``count_y``; the direct pulse generators
-    drive ``busy`` (pulses still to go) and the pulse outputs ``outputs_busy``
-    (a step request is pending or the last step has not yet left the pins)."""
+    """The PULSE command's seam for ``axes`` axes: the sequencer drives ``load``
+    (one clock) with ``mask`` (bit i: axis i takes its count; the others go on
+    as they were; its reset, X and Y, is today's PULSE) and the signed counts
+    ``count_x``, ``count_y``, ... (``count(axis)``); the direct pulse
+    generators drive ``busy`` (pulses still to go on any axis) and the pulse
+    outputs ``outputs_busy`` (a step request is pending or the last step has
+    not yet left the pins)."""
 
-    def __init__(self, **given):
+    def __init__(self, axes=AXES.default, **given):
+        self.axes = axes
         bounds = dict(min=-(1 << (PULSE_COUNT_BITS - 1)), max=1 << (PULSE_COUNT_BITS - 1))
-        adopt(self, given, load=Signal(bool(0)), count_x=Signal(intbv(0, **bounds)),
-               count_y=Signal(intbv(0, **bounds)), busy=Signal(bool(0)), outputs_busy=Signal(bool(0)))
+        counts = {f"count_{suffix}": Signal(intbv(0, **bounds)) for suffix in axis_suffixes(axes)}
+        adopt(self, given, load=Signal(bool(0)), mask=Signal(intbv(XY_MASK)[axes:]), **counts,
+               busy=Signal(bool(0)), outputs_busy=Signal(bool(0)))
+
+    def count(self, axis):
+        """Axis ``axis``'s count (0 X, 1 Y, ...)."""
+        return getattr(self, f"count_{axis_suffixes(self.axes)[axis]}")
 
 
 class SetPort:
@@ -203,6 +213,27 @@ class StepPositions:
     def of(self, axis):
         """The step counter of axis ``axis``."""
         return getattr(self, axis_suffixes(self.axes)[axis])
+
+
+class AxisBlock:
+    """The per-axis register blocks' seam (``rtl/regs/axis_block.py``) for
+    ``axes`` axes and a local bus of ``addr_width`` address bits.
+
+    The card drives ``addr`` (the register access's byte offset), ``read`` (a
+    register read is taken at this edge) and ``positions`` (``StepPositions``,
+    the live step counts); the unit drives ``held``
+    (``StepPositions``: every axis's count but X's as the last POS_X read
+    captured it) and ``pos_words`` (the words POS_Z, POS_A, ... read: one
+    32-bit signal per axis from Z on)."""
+
+    def __init__(self, axes=AXES.default, addr_width=16, positions=None, pos_words=None, **given):
+        self.axes = axes
+        adopt(self, given, addr=Signal(intbv(0)[addr_width:]), read=Signal(bool(0)))
+        self.positions = StepPositions(axes) if positions is None else positions
+        self.held = StepPositions(axes)
+        self.pos_words = [Signal(intbv(0)[32:]) for _ in range(2, axes)] if pos_words is None else list(pos_words)
+        if len(self.pos_words) != max(0, axes - 2):
+            raise ValueError(f"AxisBlock: {len(self.pos_words)} POS words for the {axes - 2} axes from Z on")
 
 
 class RampSettings:

@@ -299,3 +299,59 @@ class TargetRequests:
                io_byte=Signal(intbv(0)[2:]), cbe=Signal(intbv(0xF)[4:]), ad=Signal(intbv(0)[32:]),
                h_data=Signal(intbv(0)[32:]), h_be=Signal(intbv(0)[4:]),
                **{name: Signal(bool(0)) for name in bools})
+
+
+class TargetTransaction:
+    """The PCI target's transaction registers (``rtl/pci/pci_transaction.py``);
+    ``idle`` is the state enum's idle item, ``width`` the bits of a dword
+    address; the target wires in the signals it has.
+
+    From the target: ``state_next``, ``first_phase_next``,
+    ``address_fault_next`` (next values the pins chose), ``phase_step`` (the
+    claim, or a completed phase of a memory burst), ``claim``,
+    ``claim_config``, ``claim_io``, ``claim_alias``, ``start_addr``,
+    ``address_phase``, ``ad``, ``cbe`` (input registers), ``trdy_q``,
+    ``stop_q``, ``got``, ``accepted``, ``draining`` (``TargetRequests``).  Its
+    registers: ``state``, ``first_phase``, ``address_fault``, ``phase_addr``,
+    ``at_last``, ``before_last`` (``phase_addr`` is the last / the last but
+    one dword of BAR1), ``is_read``, ``is_config``, ``space_mem``,
+    ``single``, ``first_pending``, ``fetching``, ``io_byte``, ``req_addr``,
+    ``req_addr_stale``, ``wait_count``, ``initial_wait_over``,
+    ``subsequent_wait_over``; and ``waiting`` (a data phase waits for this
+    target), ``timeout`` (the latency rule ends it)."""
+
+    def __init__(self, idle, width, **given):
+        bools = ("first_phase_next", "address_fault_next", "phase_step", "claim", "claim_config", "claim_io",
+                 "claim_alias", "address_phase", "trdy_q", "stop_q", "got", "accepted", "draining",
+                 "first_phase", "address_fault", "at_last", "before_last", "is_read", "is_config", "space_mem",
+                 "single", "first_pending", "fetching", "req_addr_stale", "initial_wait_over",
+                 "subsequent_wait_over", "waiting", "timeout")
+        adopt(self, given, state_next=Signal(idle), state=Signal(idle), start_addr=Signal(modbv(0)[width:]),
+               ad=Signal(intbv(0)[32:]), cbe=Signal(intbv(0xF)[4:]), phase_addr=Signal(modbv(0)[width:]),
+               req_addr=Signal(modbv(0)[width:]), io_byte=Signal(intbv(0)[2:]),
+               wait_count=Signal(intbv(0, min=0, max=16)), **{name: Signal(bool(0)) for name in bools})
+
+
+class TargetBoundary:
+    """The PCI target's flip-flops at the bus (``rtl/pci/pci_boundary.py``);
+    the target wires in the signals it has.
+
+    Input registers (the bus at the last edge): ``ad``, ``cbe``, ``idsel``
+    (the pads' own with ``io_registers``), ``frame_q``, ``frame_qq`` (two
+    edges back), ``irdy_q``.  Output registers and their next values:
+    ``trdy_q``/``trdy_next``, ``stop_q``/``stop_next``,
+    ``devsel_q``/``devsel_next``, ``drive_next`` (TRDY#, STOP#, DEVSEL#
+    driven), ``ad_oe_next``, ``ad_out`` (the AD register;
+    ``read_source`` the dword it takes unless the master has yet to take the
+    one on the bus), ``ad_parity_q``/``ad_out_parity``, ``perr_q``/
+    ``perr_next``, ``perr_oe_next``, ``serr_oe_next``, ``parity_error_q``/
+    ``parity_error_next``; ``irq`` and ``interrupt_disable`` (INTA#)."""
+
+    def __init__(self, **given):
+        words = ("ad", "ad_out", "read_source")
+        ones = ("frame_q", "frame_qq", "irdy_q", "trdy_q", "trdy_next", "stop_q", "stop_next", "devsel_q",
+                "devsel_next", "perr_q", "perr_next")
+        zeros = ("idsel", "drive_next", "ad_oe_next", "ad_parity_q", "ad_out_parity", "perr_oe_next",
+                 "serr_oe_next", "parity_error_q", "parity_error_next", "irq", "interrupt_disable")
+        adopt(self, given, cbe=Signal(intbv(0xF)[4:]), **{name: Signal(intbv(0)[32:]) for name in words},
+               **{name: Signal(bool(1)) for name in ones}, **{name: Signal(bool(0)) for name in zeros})

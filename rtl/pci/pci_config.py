@@ -50,7 +50,7 @@ def pci_config(clock, reset, config, *, build=Build()):
     subsystem_word = build.subsystem_id << 16 | build.subsystem_vendor_id
     io_bar_writable = (0xFFFF << build.io_bar_bits) & 0xFFFF   # BAR0[31:16] hardwired to 0 (PC I/O)
     mem_bar_writable = (0xFFFFFFFF << build.mem_bar_bits) & 0xFFFFFFFF
-    alias_bar_writable = (0xFFFFFFFF << alias_bar_bits(build.io_bar_bits)) & 0xFFFFFFFF
+    alias_bar_writable = (0xFFFFFFFF << alias_bar_bits(build.io_bar_bits, build.reg_bar_bits)) & 0xFFFFFFFF
 
     signaled_target_abort = Signal(bool(0))
     signaled_system_error = Signal(bool(0))

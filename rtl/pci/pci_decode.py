@@ -11,16 +11,16 @@ from myhdl import always_comb, block, intbv
 
 from rtl.pci.pci_slave_build import (CMD_CONFIG_READ, CMD_CONFIG_WRITE, CMD_IO_READ, CMD_IO_WRITE, CMD_MEM_READ,
                                       CMD_MEM_READ_LINE, CMD_MEM_READ_MULTIPLE, CMD_MEM_WRITE, CMD_MEM_WRITE_INVALIDATE,
-                                      CONFIG_DWORDS, alias_bar_bits, last_dword)
+                                      CONFIG_DWORDS, alias_bar_bits, alias_repeats, last_dword)
 
 
 @block
-def pci_decode(decode, *, io_bits, mem_bits):
+def pci_decode(decode, *, io_bits, mem_bits, reg_bits):
     """Ports: ``decode`` a ``TargetDecode`` (``idle`` its state enum's idle
     item; ``start_addr`` as wide as the target's dword counters).
 
-    Parameters: ``io_bits``, ``mem_bits`` (BAR0 is 2**io_bits bytes, BAR1
-    2**mem_bits bytes, BAR2 ``alias_bar_bits(io_bits)``).
+    Parameters: ``io_bits``, ``mem_bits``, ``reg_bits`` (BAR0 is 2**io_bits
+    bytes, BAR1 2**mem_bits bytes, BAR2 ``alias_bar_bits(io_bits, reg_bits)``).
 
         edge        A        A+1
         AD, C/BE#   <adr>              on the pins, sampled at A
@@ -29,8 +29,9 @@ def pci_decode(decode, *, io_bits, mem_bits):
     idle = decode.idle
     width = len(decode.start_addr)
     ad, cbe, bar0, bar1, bar2 = decode.ad, decode.cbe, decode.bar0, decode.bar1, decode.bar2
-    alias_bits = alias_bar_bits(io_bits)
+    alias_bits = alias_bar_bits(io_bits, reg_bits)
     config_mask, io_mask, mem_mask = CONFIG_DWORDS - 1, last_dword(io_bits), last_dword(mem_bits)
+    alias_mask = io_mask if alias_repeats(io_bits, reg_bits) else last_dword(alias_bits)
 
     @always_comb
     def decode_address():
@@ -58,14 +59,16 @@ def pci_decode(decode, *, io_bits, mem_bits):
         # the command (it counts only with a claim, which has the same
         # command) and, in memory space, by BAR2's compare, as the back end
         # sees the registers at BAR0's offsets whichever BAR reached them
-        # (a BAR0 under 16 bytes repeats in BAR2's 16)
+        # (a BAR0 under 16 bytes repeats in BAR2's 16; a BAR2 that reg_bits
+        # makes larger than BAR0 passes its offsets whole: BAR0's registers
+        # below BAR0's size, the registers only BAR2 has above it)
         code = cbe
         if code == CMD_CONFIG_READ or code == CMD_CONFIG_WRITE:
             decode.start_addr.next = ad[width + 2:2] & intbv(config_mask)[width:]
         elif code == CMD_IO_READ or code == CMD_IO_WRITE:
             decode.start_addr.next = ad[width + 2:2] & intbv(io_mask)[width:]
         elif decode.claim_alias:
-            decode.start_addr.next = ad[width + 2:2] & intbv(io_mask)[width:]
+            decode.start_addr.next = ad[width + 2:2] & intbv(alias_mask)[width:]
         else:
             decode.start_addr.next = ad[width + 2:2] & intbv(mem_mask)[width:]
 

@@ -24,10 +24,18 @@ CONFIG_DWORDS = 64   # the configuration header's 256 bytes
 MEMORY_BAR_MIN_BITS = 4   # a memory BAR's bits [3:0] are its type: 16 bytes at least (PCI 2.3, 6.2.5.1)
 
 
-def alias_bar_bits(io_bar_bits):
-    """Bits of BAR2, the memory alias of BAR0's registers: BAR0's size, at
-    least a memory BAR's 16 bytes (a smaller BAR0 then repeats in it)."""
-    return max(io_bar_bits, MEMORY_BAR_MIN_BITS)
+def alias_bar_bits(io_bar_bits, reg_bar_bits=MEMORY_BAR_MIN_BITS):
+    """Bits of BAR2, the registers in memory space: ``reg_bar_bits``, at least
+    BAR0's size (and a memory BAR's 16 bytes: a smaller BAR0 then repeats in
+    them, see ``alias_repeats``)."""
+    return max(io_bar_bits, reg_bar_bits, MEMORY_BAR_MIN_BITS)
+
+
+def alias_repeats(io_bar_bits, reg_bar_bits=MEMORY_BAR_MIN_BITS):
+    """True when BAR2 holds BAR0's registers only, repeated to fill it (its
+    offsets reach the back end cut to BAR0's size); False when ``reg_bar_bits``
+    makes it larger than BAR0 (its offsets reach the back end whole)."""
+    return reg_bar_bits <= io_bar_bits or reg_bar_bits == MEMORY_BAR_MIN_BITS
 
 
 def last_dword(bar_bits):
@@ -42,8 +50,9 @@ def check_io_registers(io_registers):
     return io_registers
 
 
-def local_addr_width(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits):
-    """Address bits of ``LocalBus`` the target drives: the larger BAR, and at
+def local_addr_width(io_bar_bits=Build.io_bar_bits, mem_bar_bits=Build.mem_bar_bits, reg_bar_bits=Build.reg_bar_bits):
+    """Address bits of ``LocalBus`` the target drives: the largest BAR, and at
     least the 256 bytes of configuration space (one counter serves all);
     ParameterError if a size is outside its range."""
-    return max(PARAMETERS["io_bar_bits"].check(io_bar_bits), PARAMETERS["mem_bar_bits"].check(mem_bar_bits), 8)
+    return max(PARAMETERS["io_bar_bits"].check(io_bar_bits), PARAMETERS["mem_bar_bits"].check(mem_bar_bits),
+               PARAMETERS["reg_bar_bits"].check(reg_bar_bits), 8)

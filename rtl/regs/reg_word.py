@@ -6,8 +6,8 @@ from rtl.interfaces import ReadChain, RegisterBus, RegisterWord, SetPort, card_r
 
 
 @block
-def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
-    """The register ``word.spec`` (a ``models.registers.Register``) on the I/O bus.
+def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=()):
+    """The register ``word.spec`` (a ``models.registers.Register``) on the register bus.
 
     Ports (``rtl/interfaces/``): ``bus`` (``RegisterBus``: ``addr`` of
     reads; ``write_addr``, ``write``, ``byte_mask`` and ``wdata`` of a
@@ -24,7 +24,9 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
     this register's when ``bus.addr`` is its offset, on ``chain_out.data``
     (a chain of ORs, so the decoder is generated from the table; reads have
     no side effect here, and whether the bus reads at all is decided after
-    the chain's end).
+    the chain's end).  Parameter: ``aliases``, more offsets the register
+    answers at, exactly as at its own (X's and Y's per-axis block offsets in
+    BAR2, ``models.registers.axis_aliases``).
 
         clock     _/~\\_/~\\_/~\\_
         bus.write _/~~~\\_______     bus.write_addr = spec.offset
@@ -46,6 +48,10 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
     stored = spec.access in ("RW", "W1C", "W1S", "WP")
     shown = word.value if spec.access in ("RW", "W1C", "W1S") else word.hw
 
+    if len(aliases) > 1:
+        raise ValueError(f"{spec.name}: one alias offset at most, not {aliases}")
+    alias = aliases[0] if aliases else None
+
     @always_comb
     def select():
         mine.next = bus.addr == offset
@@ -53,6 +59,14 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
     @always_comb
     def select_write():
         mine_write.next = bus.write_addr == offset
+
+    @always_comb
+    def select_either():
+        mine.next = bus.addr == offset or bus.addr == alias
+
+    @always_comb
+    def select_write_either():
+        mine_write.next = bus.write_addr == offset or bus.write_addr == alias
 
     @always_comb
     def read_chain():
@@ -83,10 +97,11 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out):
         written.next = bus.wdata[span:] & bus.byte_mask[span:]
 
     merge = merge_bytes if spec.access == "RW" else mask_bytes  # RW: shown_wide is the register
-    generators = [select, read_chain, _widen(shown, shown_wide)]
+    generators = [select if alias is None else select_either, read_chain, _widen(shown, shown_wide)]
     if not stored:
         return generators + [clamp_pass]
-    generators += [select_write, merge, _limit(written, honoured, out_of_range, spec)]
+    generators += [select_write if alias is None else select_write_either, merge,
+                   _limit(written, honoured, out_of_range, spec)]
     generators.append(clamp_chain if spec.access in ("RW", "WP") else clamp_pass)
     generators.append(_store(clock, reset, mine_write, bus, set_mine, set_port, set_target, written, honoured,
                              out_of_range, word, clamped, spec))

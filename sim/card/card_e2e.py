@@ -26,7 +26,7 @@ from myhdl import always, block
 
 from models import registers as regmap
 from models.commands import command_words
-from models.parameters import CLOCK_HZ, PARAMETERS, Build
+from models.parameters import AXES, CLOCK_HZ, PARAMETERS, Build
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, convert_unit
 from rtl.interfaces import MotorPins
@@ -49,13 +49,15 @@ INTA_LIMIT = 200000
 BAR_ROLES = {"io": 0, "mem": 1, "alias": 2}
 
 
-def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default):
-    """``card.v`` for ``fifo_depth`` and ``clock_hz`` (what CLOCK_HZ reports):
-    ``gen/card.v`` for the defaults, else a conversion kept in ``build/conv``
-    (``sim/backends/conversions.py``)."""
-    if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default:
+def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default, axes=AXES.default):
+    """``card.v`` for ``fifo_depth``, ``clock_hz`` (what CLOCK_HZ reports) and
+    ``axes``: ``gen/card.v`` for the defaults, else a conversion kept in
+    ``build/conv`` (``sim/backends/conversions.py``)."""
+    if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default and axes == AXES.default:
         return GEN_DIR / "card.v"
     params = {"fifo_depth": fifo_depth, "clock_hz": clock_hz}
+    if axes != AXES.default:
+        params["axes"] = AXES.check(axes)
     return converted("card", repr(params), functools.partial(convert_unit, "card", params))
 
 
@@ -69,17 +71,21 @@ class CardUnderTest:
     pins), ``wait`` (the bench's ``CardWait``), ``samples`` (MyHDL and
     Icarus: the bus of every clock, values and drivers), ``io`` / ``mem`` /
     ``alias`` (BAR0..2 bases, set once enumerated).  Called with a ``PciBench``, it is
-    that bench's target (MyHDL, Icarus)."""
+    that bench's target (MyHDL, Icarus).  ``axes``: the card's build (Icarus: the
+    two-axis top only)."""
 
-    def __init__(self, kind, fifo_depth, machine=None):
+    def __init__(self, kind, fifo_depth, machine=None, axes=AXES.default):
         if kind not in KINDS:
             raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
-        self.kind, self.fifo_depth = kind, fifo_depth
+        if kind == "icarus" and axes != AXES.default:
+            raise ValueError("the Icarus card bench runs the two-axis top only")
+        self.kind, self.fifo_depth, self.axes = kind, fifo_depth, AXES.check(axes)
         self.machine = machine   # a SimMachine on the input pins (MyHDL, Icarus; Verilator: in the harness)
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
         self.wait = CardWait(signal=kind != "verilator")
         self.samples = []
         self.io = self.mem = self.alias = None
+        self.pins = None   # the MotorPins (MyHDL, Icarus), once the bench is built
 
     def __call__(self, bench):
         idsel_bit = 16 + TARGET_DEVICE
@@ -90,12 +96,13 @@ class CardUnderTest:
             def core(b):  # the X/Z report needs the bus model, which exists only later
                 return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
         else:
-            ports = card_ports()
+            ports = card_ports(self.axes)
             ports["clock"], ports["reset"] = bench.clock, bench.reset
             agent, motor = ports["pci"], ports["pins"]
 
             def core(_):
-                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth))
+                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth, axes=self.axes))
+        self.pins = motor
         capture = (pin_capture, (bench.clock, motor, self.log))
         waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
         extra = [(machine_process, (bench.clock, motor, self.machine))] if self.machine is not None else []

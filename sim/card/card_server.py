@@ -1,9 +1,9 @@
 """The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
 
-``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--free-run CLOCKS]
+``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--free-run CLOCKS]
 [--ppm N] [--machine FILE [--estop CLOCK ...]]``
-opens ``CardSession("verilator", clock_hz=N)`` (a card built to report N in
-CLOCK_HZ), listens on PATH, serves one client and, when the client goes,
+opens ``CardSession("verilator", clock_hz=N, axes=N)`` (a card built to report N in
+CLOCK_HZ, of N axes), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
 the STEP/DIR pin rises, the changes of the DRIVE_ENABLE pin and the card's
 final state (STATUS, MACHINE_STATUS, STOP_REASON, POS_X, POS_Y read after
@@ -46,8 +46,10 @@ Every request is three little-endian 32-bit words, ``op, a, b``; FIFO is
 followed by ``a`` data words.  Every answer is two words, ``status, value``
 (status 0: done; else ``value`` is the length of a UTF-8 message that follows).
 
-    op 1 READ    a = BAR0 offset           value = the register
-    op 2 WRITE   a = BAR0 offset, b = value
+    op 1 READ    a = register offset       value = the register
+    op 2 WRITE   a = register offset, b = value
+                 (offsets: BAR0's, and beyond BAR0 BAR2's per-axis blocks;
+                 models/card_socket.py)
     op 3 FIFO    a = word count, words     (one burst into BAR1)
     op 4 ADVANCE a = card clocks           value = card clocks since the server opened
                                            the card, low 32 bits: the card runs until
@@ -63,7 +65,7 @@ import sys
 
 from models import registers as regmap
 from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQUEST_WORDS, WRITE
-from models.parameters import CLOCK_HZ
+from models.parameters import AXES, CLOCK_HZ, ParameterError
 from models.sim_machine import MachineConfig
 from sim.card.card_session import AccessError, CardSession
 
@@ -253,6 +255,9 @@ def main(argv=None):
     parser.add_argument("--log", required=True, help="JSON file written when the client has gone")
     parser.add_argument("--clock-hz", type=int, default=CLOCK_HZ.default,
                         help=f"clock the simulated card reports in CLOCK_HZ (default {CLOCK_HZ.default})")
+    parser.add_argument("--axes", type=int, default=AXES.default,
+                        help=f"axes the simulated card is built with (BUILD.AXES; {AXES.bounds()}; "
+                             f"default {AXES.default})")
     parser.add_argument("--free-run", type=int, default=0, metavar="CLOCKS",
                         help="clocks the card runs on its own after the client has gone (default 0)")
     parser.add_argument("--ppm", type=int, default=0,
@@ -284,13 +289,17 @@ def main(argv=None):
         parser.error("--estop clocks are card clocks since the server opened the card, not negative")
     if not 1 <= args.clock_hz <= 0xFFFFFFFF:
         parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
+    try:
+        AXES.check(args.axes)
+    except ParameterError as error:
+        parser.error(f"--axes {error.problem}")
     if not 0 <= args.free_run <= MAX_FREE_RUN:
         parser.error(f"--free-run must be 0..{MAX_FREE_RUN} clocks, not {args.free_run}")
     if not -MAX_PPM <= args.ppm <= MAX_PPM:
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
     if os.path.exists(args.socket):
         parser.error(f"{args.socket} exists: remove it or choose another path")
-    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine)
+    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine, axes=args.axes)
     try:
         server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)

@@ -30,7 +30,7 @@ bus cannot carry (ValueError, ``models.pci.check_access``) and raises
 """
 from myhdl import now
 
-from models.parameters import CLOCK_HZ
+from models.parameters import AXES, CLOCK_HZ
 from models.pci import CONFIG_BYTES, check_access, check_value
 from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.pci_bus import VerilatorBench
@@ -60,7 +60,10 @@ class CardSession:
     input pins (``self.machine``, a ``sim.card.sim_machine.MachineHandle``;
     None without one: the inputs stay low); ``register_bar``: the BAR
     ``read`` and ``write`` use, 0 (I/O) or 2 (the same registers at the same
-    offsets in memory space, as a host maps them where it has no port I/O).
+    offsets in memory space, as a host maps them where it has no port I/O);
+    offsets beyond BAR0 (the per-axis register blocks) go through BAR2
+    either way; ``axes``: the card's build (MyHDL and Verilator; Icarus runs
+    the two-axis top).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by
@@ -69,17 +72,17 @@ class CardSession:
     """
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
-                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0):
+                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0, axes=AXES.default):
         if register_bar not in REGISTER_BARS:
             raise ValueError(f"register_bar must be 0 (I/O) or 2 (memory), not {register_bar!r}")
         self.kind = kind
         self.register_bar = register_bar
         simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
-        self.target = CardUnderTest(kind, fifo_depth, machine=simulated)
+        self.target = CardUnderTest(kind, fifo_depth, machine=simulated, axes=axes)
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":
-            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz)
+            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz, axes)
             if machine is not None:
                 self._runner.card.start_machine(machine)
         else:
@@ -126,19 +129,28 @@ class CardSession:
                               f"({len(result.data)} of {result.requested} data phases)")
         return result
 
+    def _through_bar2(self, offset):
+        """True when an access at ``offset`` goes through BAR2: ``register_bar``
+        says so, or BAR0 ends before ``offset`` (BAR2's per-axis blocks)."""
+        return self.register_bar == 2 or offset >= self.bars["io"]["size"]
+
     def read(self, offset, size=4):
-        """``size`` bytes of the function registers at ``offset`` (through ``register_bar``)."""
-        check_access(offset, size, self.bars["io"]["size"])
-        if self.register_bar == 2:
+        """``size`` bytes of the function registers at ``offset`` (through
+        ``register_bar``; beyond BAR0, through BAR2)."""
+        bar2 = self._through_bar2(offset)
+        check_access(offset, size, self.bars["alias" if bar2 else "io"]["size"], "BAR2" if bar2 else "BAR0")
+        if bar2:
             return self._complete(self.host.mem_read(self.alias + offset, size=size),
                                   f"BAR2 read at {offset:#x}").value
         return self._complete(self.host.io_read(self.io + offset, size), f"I/O read at {offset:#x}").value
 
     def write(self, offset, value, size=4):
-        """Write ``size`` bytes of the function registers at ``offset`` (through ``register_bar``)."""
-        check_access(offset, size, self.bars["io"]["size"])
+        """Write ``size`` bytes of the function registers at ``offset`` (through
+        ``register_bar``; beyond BAR0, through BAR2)."""
+        bar2 = self._through_bar2(offset)
+        check_access(offset, size, self.bars["alias" if bar2 else "io"]["size"], "BAR2" if bar2 else "BAR0")
         check_value(value, size)
-        if self.register_bar == 2:
+        if bar2:
             self._complete(self.host.mem_write(self.alias + offset, value, size), f"BAR2 write at {offset:#x}")
         else:
             self._complete(self.host.io_write(self.io + offset, value, size), f"I/O write at {offset:#x}")
@@ -174,6 +186,13 @@ class CardSession:
                                 f"configuration read at {register:#x}")
         return (result.value >> (8 * (register & 3))) & ((1 << (8 * size)) - 1)
 
+    def pin(self, name):
+        """The level of the motor pin ``name`` (``step_z``, ``dir_a``, ...:
+        ``MotorPins``) after the last clock."""
+        if self.kind == "verilator":
+            return bool(self._runner.card.model[f"pins_{name}"])
+        return bool(getattr(self.target.pins, name))
+
     def wait(self, clocks, inta=False, steps=0):
         """Up to ``clocks`` clocks, fewer when INTA# is sampled low (``inta``)
         or ``steps`` more STEP rises came; (clocks waited, ``Stop``)."""
@@ -187,8 +206,8 @@ class CardSession:
 
 
 class _VerilatorRunner:
-    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz):
-        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz), idsel_bit=16 + TARGET_DEVICE)
+    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz, axes):
+        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz, axes), idsel_bit=16 + TARGET_DEVICE)
         self.bench = VerilatorBench(self.card, target, host_options=host_options, monitor=monitor)
         self.bench.start()
 

@@ -17,9 +17,9 @@ from models.instructions import encode
 ADDRESS = "0000:03:00.0"
 
 
-def register_bytes(registers=True):
-    """The card's register block after reset (zeros: another bitstream)."""
-    bar0 = bytearray(1 << regmap.IO_BAR_BITS)
+def register_bytes(registers=True, size=1 << regmap.IO_BAR_BITS):
+    """The card's register block after reset (zeros: another bitstream), ``size`` bytes."""
+    bar0 = bytearray(size)
     if registers:
         for reg in regmap.REGISTERS:
             bar0[reg.offset:reg.offset + 4] = reg.reset.to_bytes(4, "little")
@@ -38,13 +38,13 @@ def fake_card(root, address=ADDRESS, ids=(VENDOR_ID, DEVICE_ID), uio="uio0", reg
     lines = ["0x0000000000001000 0x00000000000010ff 0x0000000000040101" if bar0 else
              "0x0000000000000000 0x0000000000000000 0x0000000000000000",
              "0x00000000fe000000 0x00000000fe000fff 0x0000000000040200"]
-    if bar2:
-        lines.append("0x00000000fe001000 0x00000000fe0010ff 0x0000000000040200")
+    if bar2:   # 4 KiB: BAR0's registers, then the per-axis blocks (docs/pci.md)
+        lines.append("0x00000000fe001000 0x00000000fe001fff 0x0000000000040200")
     (folder / "resource").write_text("\n".join(lines) + "\n")
     if bar0:
         (folder / "resource0").write_bytes(bytes(register_bytes(registers)))
     if bar2:
-        (folder / "resource2").write_bytes(bytes(register_bytes(registers)))
+        (folder / "resource2").write_bytes(bytes(register_bytes(registers, 4096)))
     (folder / "resource1").write_bytes(bytes(4096))
     config = bytearray(256)
     config[0:4] = (ids[1] << 16 | ids[0]).to_bytes(4, "little")
@@ -115,6 +115,36 @@ def test_registers_through_the_mapped_memory_bar_without_system_calls(tmp_path, 
             assert data[0x18:0x1C] == bytes([0x34, 0xAB, 0, 0])
             identity = Card(transport).identity
             assert identity.fifo_words == regmap.register("FIFO_SIZE").reset
+    finally:
+        os.close(writer)
+
+
+def test_per_axis_blocks_are_reached_through_the_mapped_bar2_only(tmp_path):
+    """Z's block (0x180 + 0x40 * ... docs/registers.md: POS_Z at 0x180, PULSE_COUNT_Z at
+    0x188) lies beyond BAR0: loads and stores in resource2's mapping; with BAR0 alone
+    the host is told why it cannot reach it."""
+    folder = fake_card(tmp_path / "mapped", bar2=True)
+    image = bytearray((folder / "resource2").read_bytes())
+    image[0x180:0x184] = (0xFFFFFFFB).to_bytes(4, "little")
+    (folder / "resource2").write_bytes(bytes(image))
+    writer = os.open(tmp_path / "mapped" / "dev" / "uio0", os.O_RDWR)
+    try:
+        with opened(tmp_path / "mapped") as transport:
+            assert transport.read(0x180) == 0xFFFFFFFB
+            transport.write(0x188, 12)
+            assert (folder / "resource2").read_bytes()[0x188:0x18C] == bytes([12, 0, 0, 0])
+            with pytest.raises(ValueError, match="0x1000"):
+                transport.read(0x1000)
+    finally:
+        os.close(writer)
+    fake_card(tmp_path / "io", bar2=False)
+    writer = os.open(tmp_path / "io" / "dev" / "uio0", os.O_RDWR)
+    try:
+        with opened(tmp_path / "io") as transport:
+            with pytest.raises(TransportError, match="BAR2 is not mapped"):
+                transport.read(0x180)
+            with pytest.raises(TransportError, match="BAR2 is not mapped"):
+                transport.write(0x188, 1)
     finally:
         os.close(writer)
 

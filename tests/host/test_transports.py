@@ -69,8 +69,9 @@ def test_interrupt_and_card_time(transport):
     assert not transport.wait_interrupt(1e-6)
 
 
-# misaligned, a size PCI has no byte enables for, the dword just past the I/O BAR, below it
-@pytest.mark.parametrize("offset, size", [(2, 4), (1, 2), (1 << regmap.IO_BAR_BITS, 4), (0, 3), (-4, 4)])
+# misaligned, a size PCI has no byte enables for, the dword just past BAR2 (beyond the I/O BAR
+# the per-axis blocks), below it
+@pytest.mark.parametrize("offset, size", [(2, 4), (1, 2), (1 << regmap.REG_BAR_BITS, 4), (0, 3), (-4, 4)])
 def test_bad_accesses_are_refused_before_the_bus(transport, offset, size):
     clocks = transport.clocks
     with pytest.raises(ValueError):

@@ -5,6 +5,7 @@ Each simulated card is a card server of its own (``run/cardK.sock``, its record
 end positions are read from each card's own STEP/DIR pins and step counters
 (the server's record), not from the driver.
 """
+import re
 import shutil
 import socket
 import struct
@@ -153,13 +154,15 @@ REQUEST = struct.Struct("<" + "I" * REQUEST_WORDS)
 ANSWER = struct.Struct("<" + "I" * ANSWER_WORDS)
 
 
-def card_of_axes(path, axes, stop):
+def card_of_axes(path, axes, stop, positions, reads):
     """A card that answers the socket protocol (models/card_socket.py) with the register
-    table's reset values, BUILD.AXES = ``axes``; writes are taken and dropped."""
+    table's reset values, BUILD.AXES = ``axes`` and the step counters ``positions``
+    ({offset: value}); writes are taken and dropped; every offset read is added to ``reads``."""
     build = regmap.register("BUILD")
     field = build.field("AXES")
     registers = {reg.offset: reg.reset for reg in regmap.REGISTERS}
     registers[build.offset] = (build.reset & ~field.mask) | axes << field.lsb
+    registers.update(positions)
     listener = listening_socket(path)
     try:
         connection, _ = listener.accept()
@@ -169,6 +172,8 @@ def card_of_axes(path, axes, stop):
             if len(request) < REQUEST.size:
                 break
             op, a, _ = REQUEST.unpack(request)
+            if op == READ:
+                reads.append(a)
             connection.sendall(ANSWER.pack(0, registers.get(a, 0) if op == READ else 0))
         connection.close()
     except OSError:
@@ -177,21 +182,48 @@ def card_of_axes(path, axes, stop):
         listener.close()
 
 
-@pytest.mark.parametrize("axes", [3, 6])
-def test_a_card_with_more_axes_than_the_driver_has_registers_for_is_refused(linuxcnc_alone, axes):
-    """BUILD.AXES is read at load: a card of more axes than gen/dda_card.h has step counters
-    for (X, Y) is refused saying so, with nothing made."""
-    run = run_folder()
-    stop = threading.Event()
-    card = threading.Thread(target=card_of_axes, args=(run / "card.sock", axes, stop))
+def serve_card_of_axes(run, axes, script, positions=None):
+    """halrun ``script`` against ``card_of_axes``: (output, offsets read)."""
+    stop, reads = threading.Event(), []
+    card = threading.Thread(target=card_of_axes, args=(run / "card.sock", axes, stop, positions or {}, reads))
     card.start()
     try:
-        output = refuse(run, f"loadrt dda_card sim={run / 'card.sock'}")
+        output = refuse(run, script)
     finally:
         stop.set()
         socket.socket(socket.AF_UNIX).connect_ex(str(run / "card.sock"))  # release a listener still waiting
         card.join()
-    assert f"has {axes} axes (BUILD.AXES); this driver drives 2 per card: the registers of axes 2 and up " \
-           "are not in gen/dda_card.h yet" in output
+    return output, reads
+
+
+# every axis's step counter where docs/registers.md puts it: POS_X, POS_Y in BAR0,
+# axis i >= 2 at 0x100 + 0x40 * i in BAR2; the values the fake card holds there
+POS_OFFSETS = {0: 0x20, 1: 0x24, 2: 0x180, 3: 0x1C0, 4: 0x200, 5: 0x240}
+COUNTS = {0: 5, 1: -7, 2: 200, 3: -300, 4: 400, 5: 500}
+
+
+@pytest.mark.parametrize("axes", [3, 6])
+def test_a_card_of_more_axes_gets_a_stepgen_per_axis_read_from_its_block(linuxcnc_alone, axes):
+    """BUILD.AXES is read at load: a card of N axes gets stepgen.00 .. stepgen.(N-1), whose
+    counts come from each axis's step counter, X's read first in a period (it captures
+    the others)."""
+    run = run_folder()
+    positions = {POS_OFFSETS[i]: COUNTS[i] & 0xFFFFFFFF for i in range(axes)}
+    script = ("loadrt threads name1=servo-thread period1=1000000\n"
+              f"loadrt dda_card sim={run / 'card.sock'}\naddf dda-card.0.read servo-thread\nstart\n"
+              "loadusr -w sleep 0.2\n" + "".join(f"show pin {stepgen(0, i)}.counts\n" for i in range(axes)))
+    output, reads = serve_card_of_axes(run, axes, script, positions)
+    for i in range(axes):
+        assert re.search(rf"\s{COUNTS[i]}\s+{re.escape(stepgen(0, i))}\.counts", output), output[-2000:]
+    assert f"{stepgen(0, axes)}" not in output
+    period = reads[reads.index(POS_OFFSETS[0]):][:axes]
+    assert period == [POS_OFFSETS[i] for i in range(axes)]
+    shutil.rmtree(run, ignore_errors=True)
+
+
+def test_a_card_reporting_more_axes_than_the_design_has_is_refused(linuxcnc_alone):
+    run = run_folder()
+    output, _ = serve_card_of_axes(run, 7, f"loadrt dda_card sim={run / 'card.sock'}")
+    assert "reports 7 axes" in output and "no card of this design" in output
     assert "stepgen" not in output
     shutil.rmtree(run, ignore_errors=True)

@@ -115,3 +115,46 @@ def test_c_header_compiles_and_matches_the_table(tmp_path):
     result = subprocess.run([compiler, "-std=c11", "-Wall", "-Werror", "-I", str(tmp_path), str(probe),
                              "-o", str(tmp_path / "probe")], capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
+
+
+# The per-axis blocks as docs/pci.md lays them out: axis i at 0x100 + 0x40 * i in BAR2 (4 KiB),
+# POS, PULSE_PERIOD, PULSE_COUNT first in each; written out, not computed from the table.
+BLOCK_LAYOUT = {("POS", 0): 0x100, ("PULSE_PERIOD", 0): 0x104, ("PULSE_COUNT", 0): 0x108,
+                ("POS", 1): 0x140, ("PULSE_COUNT", 1): 0x148, ("POS", 2): 0x180, ("PULSE_PERIOD", 2): 0x184,
+                ("PULSE_COUNT", 2): 0x188, ("POS", 5): 0x240, ("PULSE_COUNT", 5): 0x248}
+
+
+@pytest.mark.parametrize("name, axis", sorted(BLOCK_LAYOUT))
+def test_per_axis_offsets_follow_the_documented_layout(name, axis):
+    assert regmap.axis_offset(name, axis) == BLOCK_LAYOUT[name, axis]
+
+
+def test_x_and_y_blocks_are_bar0_registers_and_the_others_their_own():
+    assert [regmap.axis_register(name, 0).name for name in ("POS", "PULSE_PERIOD", "PULSE_COUNT")] == [
+        "POS_X", "PULSE_PERIOD_X", "PULSE_COUNT_X"]
+    assert regmap.axis_register("PULSE_COUNT", 1).offset == 0x50   # BAR0's PULSE_COUNT_Y
+    assert regmap.axis_registers(2) == ()
+    assert [(r.name, r.offset) for r in regmap.axis_registers(3)] == [
+        ("POS_Z", 0x180), ("PULSE_PERIOD_Z", 0x184), ("PULSE_COUNT_Z", 0x188)]
+    assert len(regmap.axis_registers(6)) == 12
+    assert regmap.axis_aliases() == {0x100: 0x20, 0x104: 0x44, 0x108: 0x4C, 0x140: 0x24, 0x144: 0x48, 0x148: 0x50}
+    # the I/O BAR stays within PCI's 256 bytes, BAR2 is 4 KiB with the blocks after BAR0's registers
+    assert (1 << regmap.IO_BAR_BITS, 1 << regmap.REG_BAR_BITS) == (256, 4096)
+    with pytest.raises(ValueError, match="axis 6"):
+        regmap.axis_offset("POS", 6)
+
+
+def test_registers_added_bump_the_minor_version():
+    (major, minor), (old_major, old_minor) = divmod(regmap.VERSION, 256), divmod(regmap.VERSIONS[-2][0], 256)
+    assert major == old_major == 2 and minor == old_minor + 1
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(offset=0x40), "outside its block"),
+    (dict(set_index=9), "SET index"),
+    (dict(minimum=0), "not the register"),     # X's and Y's block registers are BAR0's: same range
+])
+def test_a_block_register_that_does_not_fit_is_refused(change, message):
+    bad = replace(regmap.AXIS_REGISTERS[1], **change)
+    with pytest.raises(ValueError, match=message):
+        regmap.check_axis_block((regmap.AXIS_REGISTERS[0], bad, regmap.AXIS_REGISTERS[2]))

@@ -198,7 +198,8 @@ def test_a_refused_command_writes_nothing(tmp_path):
 def test_pci_identity_and_bar_sizes_follow_the_build(tmp_path):
     """A build with other IDs: the header says what the converter was given, and
     the BAR sizes the card decodes (``rtl/card.py``: I/O from the register map,
-    a 4 KiB memory window, BAR0's registers again in memory space)."""
+    a 4 KiB memory window, 4 KiB of registers in memory space: BAR0's, then
+    the per-axis blocks, docs/pci.md)."""
     header = write_c_header(tmp_path, **BUILD)
     checks = [f"_Static_assert(DDA_PCI_{name.upper()} == {value}u, \"{name}\");"
               for name, value in BUILD.items() if name != "fifo_depth"]
@@ -206,9 +207,10 @@ def test_pci_identity_and_bar_sizes_follow_the_build(tmp_path):
                f"_Static_assert(DDA_BAR0_SIZE == {1 << IO_BAR_BITS}u, \"BAR0\");",
                "_Static_assert(DDA_BAR1_SIZE == 4096u, \"BAR1\");",
                f"_Static_assert(DDA_BAR1_SIZE == {1 << MEM_BAR_BITS}u, \"BAR1 of the card\");",
-               # BAR2, the registers' memory alias: BAR0's size (PCI 2.3 wants 16 bytes at least)
-               f"_Static_assert(DDA_BAR2_SIZE == {max(1 << IO_BAR_BITS, 16)}u, \"BAR2\");",
-               "_Static_assert(DDA_BAR2_SIZE == DDA_BAR0_SIZE, \"BAR2 aliases BAR0\");"]
+               # BAR2: BAR0's registers at 0x000..0x0FF, the six axes' blocks from 0x100 (docs/pci.md)
+               "_Static_assert(DDA_BAR2_SIZE == 4096u, \"BAR2\");",
+               "_Static_assert(DDA_BAR0_SIZE <= DDA_AXIS_BLOCK_BASE, \"the blocks after BAR0's registers\");",
+               "_Static_assert(DDA_AXIS_POS_OFFSET(5) + 4u <= DDA_BAR2_SIZE, \"six blocks in BAR2\");"]
     compiler = COMPILERS["c"][0]
     if compiler is None:
         pytest.skip("no C compiler")

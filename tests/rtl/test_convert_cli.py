@@ -34,6 +34,7 @@ RANGES = {
     "--subsystem-id": ("0x0000..0xFFFF", ["0", "0xFFFF"]),
     "--io-bar-bits": ("2..8", ["2", "8"]),
     "--mem-bar-bits": ("4..24", ["4", "24"]),
+    "--reg-bar-bits": ("4..16", ["4", "16"]),
     "--device": ("generic or ice40", ["generic", "ice40"]),
     "--variants": ("improved,precise or all", ["improved,precise", "all"]),
 }
@@ -52,6 +53,7 @@ BAD_VALUES = {
     "--subsystem-id": ["-1", "0x10000"],
     "--io-bar-bits": ["1", "9"],
     "--mem-bar-bits": ["3", "25"],
+    "--reg-bar-bits": ["3", "17"],
     "--device": ["xilinx", "ICE40", "", "ecp5"],
     "--variants": ["precise", "improved", "precise,improved", "ALL", "all,precise"],
 }

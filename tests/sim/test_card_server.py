@@ -72,8 +72,8 @@ def test_registers_fifo_and_lock_step_time(client):
 
 
 def test_bad_requests_are_answered_with_the_reason(client):
-    value, error = client.ask(READ, 0x200)
-    assert value is None and "0x200" in error
+    value, error = client.ask(READ, 0x1000)   # beyond BAR2's 4 KiB
+    assert value is None and "0x1000" in error
     value, error = client.ask(9)
     assert value is None and "unknown request 9" in error
     assert client.ask(READ, regmap.offset("ID")) == (regmap.register("ID").reset, None)  # still serving
@@ -145,7 +145,8 @@ def test_without_free_run_the_card_stays_where_the_client_left_it(client):
 @pytest.mark.parametrize("argv, message", [
     (["--clock-hz", "0"], "--clock-hz must be"), (["--clock-hz", str(1 << 32)], "--clock-hz must be"),
     (["--free-run", "-1"], "--free-run must be"), (["--free-run", str((1 << 30) + 1)], "--free-run must be"),
-    (["--ppm", "100001"], "--ppm must be"), (["--ppm", "-100001"], "--ppm must be")])
+    (["--ppm", "100001"], "--ppm must be"), (["--ppm", "-100001"], "--ppm must be"),
+    (["--axes", "7"], "--axes must be"), (["--axes", "1"], "--axes must be")])
 def test_bad_options_are_refused_before_anything_is_written(tmp_path, capsys, argv, message):
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), *argv])
@@ -229,3 +230,27 @@ def test_machine_options_are_checked(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine", str(tmp_path / "bad.json")])
     assert "no switch input 'ESTOP'" in capsys.readouterr().err
+
+
+@pytest.mark.slow(reason="builds a three-axis Verilator card at the tests' clock (about a minute); "
+                         "sim/card/test_axis_block.py covers the session's BAR2 routing by default")
+def test_bar2_block_offsets_reach_every_axis_and_bar0_offsets_serve_as_before(tmp_path):
+    """READ and WRITE take BAR2's per-axis block offsets beyond BAR0's (axis i at
+    0x100 + 0x40 * i: POS +0, PULSE_COUNT +8; docs/registers.md), so a client of
+    a three-axis card drives Z; BAR0's offsets answer as they always did."""
+    client = Client(tmp_path, "--axes", "3")
+    try:
+        build, _ = client.ask(READ, regmap.offset("BUILD"))
+        assert regmap.field_value("BUILD", "AXES", build) == 3
+        assert client.ask(WRITE, regmap.offset("CONTROL"), regmap.field_of("CONTROL", MODE=1)) == (0, None)
+        assert client.ask(WRITE, 0x188, 4) == (0, None)          # PULSE_COUNT of Z: four pulses
+        client.ask(ADVANCE, 200)
+        assert client.ask(READ, 0x188) == (0, None)              # none left
+        assert client.ask(READ, regmap.offset("POS_X")) == (0, None)   # captures the other axes
+        assert client.ask(READ, 0x180) == (4, None)              # POS of Z
+        assert client.ask(READ, 0x1C0) == (0, None)              # A's block: a three-axis card has none
+        record = client.finish()
+        assert record["rises"] == []                             # X and Y stood still
+    finally:
+        client.connection.close()
+        client.process.kill()
