@@ -4,7 +4,7 @@ from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, 
 from models import registers as regmap
 from models.dda_build import variants_choice
 from models.parameters import COORD_WIDTH, Build
-from rtl.interfaces import (AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing, InputConditioning,
+from rtl.interfaces import (AxesCommand, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing, InputConditioning,
                             LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings,
                             ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords, StepPositions,
                             StepRequest, card_reset)
@@ -28,7 +28,7 @@ def _bit(name, field_name):
 # docstring names are its fields, its coord_width and variants those of ``dda``
 # (the docstring is gen/regs_fifo.v's header).
 @block
-def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=Build()):
+def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, *, build=Build()):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
     Ports: ``local`` (the target's back end; I/O BAR = the registers of
@@ -37,8 +37,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     three free places, the promise the target needs before it acknowledges
     a posted dword, and a write to a full FIFO answers ``retry``, so the
     target retries or disconnects and no word is lost); ``dda`` (drives the
-    interpolator's command, reads its status); ``steps`` (the interpolator's
-    step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
+    interpolator's command, reads its status); ``axes_cmd`` (the plane and
+    a LINE's displacements for the N-axis interpolator, ``AxesCommand``);
+    ``steps`` (the interpolator's step requests, every axis); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
     inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
     stop resets and holds the sequencer, the direct pulses and the pulse
     outputs and resets the DDA; the FIFO keeps its words until
@@ -75,8 +76,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     if (dda.coord_width, variants_choice(dda.variants)) != (build.coord_width, build.variants):
         raise ValueError(f"regs_fifo: dda is a {dda.coord_width}-bit DdaPort of the variants "
                          f"{variants_choice(dda.variants)}, the build says {build.coord_width} and {build.variants}")
-    if pins.axes != build.axes:
-        raise ValueError(f"regs_fifo: pins of {pins.axes} axes, the build says {build.axes}")
+    if (pins.axes, steps.axes, axes_cmd.axes) != (build.axes,) * 3:
+        raise ValueError(f"regs_fifo: pins, steps and axes_cmd of {pins.axes}, {steps.axes} and {axes_cmd.axes} axes, "
+                         f"the build says {build.axes}")
     fifo_depth, axes = build.fifo_depth, build.axes
     specs = regmap.REGISTERS
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
@@ -113,7 +115,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
     pulses = PulseCommand()
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
-    # every axis's step requests; the DDA's ``steps`` and the direct pulses drive X and Y
+    # every axis's step requests: the DDA's ``steps``, and the direct pulses on X and Y
     requests, granted = AxisPulses(axes), AxisPulses(axes)
     requested = ConcatSignal(*reversed([requests.step(axis) for axis in range(axes)]))
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
@@ -150,7 +152,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
                               chain_in=chain[i], chain_out=chain[i + 1]))
     units.append(sequencer(clock, reset, fifo=FifoRead(dout=fifo_dout, empty=fifo_empty, pop=fifo_pop),
-                           control=seq_control, dda=dda, pulses=pulses, set_port=set_port, mark=mark,
+                           control=seq_control, dda=dda, axes_cmd=axes_cmd, pulses=pulses, set_port=set_port, mark=mark,
                            set_indices=tuple(regmap.SET_TARGETS)))
     settings = RampSettings(target=values["FEED_RATE"], ramp_start=values["RAMP_START"],
                             ramp_step=values["RAMP_STEP"])
@@ -330,6 +332,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         requests.dir_x.next = steps.dir_x if steps.step_x else direct_dir_x
         requests.dir_y.next = steps.dir_y if steps.step_y else direct_dir_y
 
+    units += [_axis_request(steps.step(axis), steps.dir(axis), requests.step(axis), requests.dir(axis))
+              for axis in range(2, axes)]
     units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before, snapshot,
               pulse_activity,
               merge_requests, widen_level if level_pad else copy_level]
@@ -349,6 +353,18 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
                          pos_y=hw["POS_Y"], irq=irq)
     units.append(status_words(clock, reset, words=status, guard=guard, conditioning=conditioning, mark=mark))
     return units
+
+
+@block
+def _axis_request(step, direction, request, request_dir):
+    """An axis without direct pulses: its requests are the interpolator's steps."""
+
+    @always_comb
+    def pass_on():
+        request.next = step
+        request_dir.next = direction
+
+    return pass_on
 
 
 @block
@@ -380,7 +396,8 @@ def _axis_source(direct_mode, count_strobe, count_value, seq_load, seq_count, ha
 def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
     ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``,
-    ``pins`` of ``axes`` axes (``steps``, the DDA's, has X and Y)."""
+    ``axes_cmd``, ``steps`` and ``pins`` of ``axes`` axes."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(axes),
+                dda=DdaPort(COORD_WIDTH.check(coord_width), variants),
+                axes_cmd=AxesCommand(axes, COORD_WIDTH.check(coord_width)), steps=AxisPulses(axes), pins=MotorPins(axes),
                 irq=Signal(bool(0)), core_clear=Signal(bool(0)))
