@@ -744,8 +744,9 @@ reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
-reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
+reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
 reg card_core0_regs_fifo1_sequencer1_arriving_moves;
+reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_slots;
 reg [0:0] card_core0_regs_fifo1_sequencer1_arriving_u;
 reg [0:0] card_core0_regs_fifo1_sequencer1_arriving_v;
@@ -4443,7 +4444,7 @@ assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_
 assign card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup9_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
@@ -4465,7 +4466,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 2;
@@ -4487,7 +4488,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
@@ -4509,7 +4510,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 1;
@@ -4531,7 +4532,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
@@ -4553,7 +4554,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_moves = 1;
@@ -4575,7 +4576,29 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup16_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        1: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        2: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        3: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        4: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        5: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        6: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        7: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        8: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        9: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        10: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        11: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        12: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        13: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        14: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        default: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+    endcase
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup17_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62449;
@@ -4597,7 +4620,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup16_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup18_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
@@ -4619,7 +4642,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup17_look_up
+always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup19_look_up
     case (card_core0_regs_fifo1_fifo_dout[26-1:20])
         0: card_core0_regs_fifo1_sequencer1_command_header1_ones = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
@@ -4869,12 +4892,12 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arriving_operands, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
+always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arriving_has_operands, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
     if (card_core0_regs_fifo1_sequencer1_word_due) begin
         if ((card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
-            more = (card_core0_regs_fifo1_sequencer1_arriving_operands != 0);
+            more = (card_core0_regs_fifo1_sequencer1_arriving_has_operands == 1);
         end
         else begin
             more = (card_core0_regs_fifo1_sequencer1_fetched < card_core0_regs_fifo1_sequencer1_next_count);
@@ -4951,7 +4974,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                     card_core0_regs_fifo1_sequencer1_bad_set_index <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 4) && (!card_core0_regs_fifo1_sequencer1_set_known));
                     card_core0_regs_fifo1_sequencer1_bad_variant <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2) && (!card_core0_regs_fifo1_sequencer1_variant_built));
                     card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
-                    if ((card_core0_regs_fifo1_sequencer1_arriving_operands == 0)) begin
+                    if ((!card_core0_regs_fifo1_sequencer1_arriving_has_operands)) begin
                         card_core0_regs_fifo1_sequencer1_next_valid <= 1;
                     end
                     else begin

@@ -655,8 +655,9 @@ reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
-reg [3:0] sequencer0_arriving_operands;
+reg sequencer0_arriving_has_operands;
 reg sequencer0_arriving_moves;
+reg [3:0] sequencer0_arriving_operands;
 reg [3:0] sequencer0_arriving_slots;
 reg [0:0] sequencer0_arriving_u;
 reg [0:0] sequencer0_arriving_v;
@@ -3072,6 +3073,28 @@ end
 
 always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup6_look_up
     case (fifo_dout[32-1:28])
+        0: sequencer0_arriving_has_operands = 0;
+        1: sequencer0_arriving_has_operands = 1;
+        2: sequencer0_arriving_has_operands = 1;
+        3: sequencer0_arriving_has_operands = 1;
+        4: sequencer0_arriving_has_operands = 1;
+        5: sequencer0_arriving_has_operands = 1;
+        6: sequencer0_arriving_has_operands = 0;
+        7: sequencer0_arriving_has_operands = 0;
+        8: sequencer0_arriving_has_operands = 0;
+        9: sequencer0_arriving_has_operands = 0;
+        10: sequencer0_arriving_has_operands = 0;
+        11: sequencer0_arriving_has_operands = 0;
+        12: sequencer0_arriving_has_operands = 0;
+        13: sequencer0_arriving_has_operands = 0;
+        14: sequencer0_arriving_has_operands = 0;
+        default: sequencer0_arriving_has_operands = 0;
+    endcase
+end
+
+
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup7_look_up
+    case (fifo_dout[32-1:28])
         0: sequencer0_command_header0_allowed_high = 0;
         1: sequencer0_command_header0_allowed_high = 62449;
         2: sequencer0_command_header0_allowed_high = 62463;
@@ -3092,7 +3115,7 @@ always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup6_look_up
 end
 
 
-always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup7_look_up
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup8_look_up
     case (fifo_dout[32-1:28])
         0: sequencer0_command_header0_allowed_low = 0;
         1: sequencer0_command_header0_allowed_low = 0;
@@ -3114,7 +3137,7 @@ always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup7_look_up
 end
 
 
-always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup8_look_up
+always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup9_look_up
     case (fifo_dout[26-1:20])
         0: sequencer0_command_header0_ones = 0;
         1: sequencer0_command_header0_ones = 1;
@@ -3364,12 +3387,12 @@ always @(fifo_dout) begin: sequencer0_lookup_variant
 end
 
 
-always @(fifo_empty, sequencer0_arriving_operands, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, sequencer_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
+always @(fifo_empty, sequencer0_arriving_has_operands, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, sequencer_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
     reg more;
     more = 1'b1;
     if (sequencer0_word_due) begin
         if ((sequencer0_fetched == 0)) begin
-            more = (sequencer0_arriving_operands != 0);
+            more = (sequencer0_arriving_has_operands == 1);
         end
         else begin
             more = (sequencer0_fetched < sequencer0_next_count);
@@ -3446,7 +3469,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                     sequencer0_bad_set_index <= ((fifo_dout[32-1:28] == 4) && (!sequencer0_set_known));
                     sequencer0_bad_variant <= ((fifo_dout[32-1:28] == 2) && (!sequencer0_variant_built));
                     sequencer0_bad_operand <= 0;
-                    if ((sequencer0_arriving_operands == 0)) begin
+                    if ((!sequencer0_arriving_has_operands)) begin
                         sequencer0_next_valid <= 1;
                     end
                     else begin

@@ -769,8 +769,9 @@ reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
-reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
 reg [0:0] card1_card_core1_regs_fifo2_sequencer2_arriving_u;
 reg [0:0] card1_card_core1_regs_fifo2_sequencer2_arriving_v;
@@ -5276,7 +5277,7 @@ assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup18_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
@@ -5298,7 +5299,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup19_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 2;
@@ -5320,7 +5321,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
@@ -5342,7 +5343,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 1;
@@ -5364,7 +5365,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup24_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
@@ -5386,7 +5387,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup25_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 1;
@@ -5408,7 +5409,29 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup24_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup26_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+    endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup27_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62449;
@@ -5430,7 +5453,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup25_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup28_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
@@ -5452,7 +5475,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup26_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup29_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[26-1:20])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
@@ -5702,12 +5725,12 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_arriving_operands, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
+always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
     if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
         if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
-            more = (card1_card_core1_regs_fifo2_sequencer2_arriving_operands != 0);
+            more = (card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands == 1);
         end
         else begin
             more = (card1_card_core1_regs_fifo2_sequencer2_fetched < card1_card_core1_regs_fifo2_sequencer2_next_count);
@@ -5784,7 +5807,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                     card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known));
                     card1_card_core1_regs_fifo2_sequencer2_bad_variant <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2) && (!card1_card_core1_regs_fifo2_sequencer2_variant_built));
                     card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
-                    if ((card1_card_core1_regs_fifo2_sequencer2_arriving_operands == 0)) begin
+                    if ((!card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands)) begin
                         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
                     end
                     else begin

@@ -201,7 +201,9 @@ module regs_fifo_harness #(
     // a LINE's axes: LINE.AXES, 0 standing for X and Y (a two-axis card runs no other)
     wire [LINE_AXES_WIDTH-1:0] line_axes = picked_header[LINE_AXES_LSB +: LINE_AXES_WIDTH];
     wire line_has_x = line_axes == 0 || line_axes[0], line_has_y = line_axes == 0 || line_axes[1];
-    wire picked_starts = picked && picked_opcode != OPCODE_SET && dda_start && moves_started == picked_number;
+    // (a picked DWELL counts SETs: only a picked move is compared with a start)
+    wire picked_starts = picked && (picked_opcode == OPCODE_LINE || picked_opcode == OPCODE_ARC) && dda_start
+                         && moves_started == picked_number;
     wire picked_sets = picked && picked_opcode == OPCODE_SET && set_strobe && sets_done == picked_number;
     always @(posedge clock) if (reset_n) begin
         if (dda_start) begin cmd_start_for_a_move: assert(moves_started < moves_seen); end

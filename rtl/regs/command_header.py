@@ -22,6 +22,12 @@ def _zero_mask_operands(op):
     return len(axes_of(spec.zero_mask)) if spec else 0
 
 
+def _fewest_operands(op):
+    """The fewest operands a header of ``op`` frames: its axis mask 0, or one axis in it."""
+    spec = op.axis_operands
+    return len(op.fixed_operands) + (min(_zero_mask_operands(op), len(spec.lead) + 1) if spec else 0)
+
+
 @block
 def command_header(word, header):
     """Reads the header word ``word`` (32 bits, the FIFO's output) into
@@ -62,6 +68,7 @@ def command_header(word, header):
     has_mask = _opcode_rom(lambda op: int(op.axis_operands is not None))
     zero_mask = _opcode_rom(_zero_mask_operands)
     lead = _opcode_rom(lambda op: len(op.axis_operands.lead) if op.axis_operands else 0)
+    some = _opcode_rom(lambda op: int(_fewest_operands(op) > 0))
     mask_high = _opcode_rom(lambda op: op.axis_header_mask >> 16)
     mask_low = _opcode_rom(lambda op: op.axis_header_mask & 0xFFFF)
     code = {op.name: op.code for op in isa.OPCODES}
@@ -76,7 +83,7 @@ def command_header(word, header):
     allowed_high, allowed_low = Signal(intbv(0)[16:]), Signal(intbv(0)[16:])
     lookups = [_lookup(word(32, isa.OPCODE_LSB), rom, signal)
                for rom, signal in ((fixed, fixed_count), (zero_mask, zero_count), (lead, lead_count),
-                                   (has_mask, has_axes), (known, header.known), (moves, header.moves),
+                                   (has_mask, has_axes), (known, header.known), (moves, header.moves), (some, header.has_operands),
                                    (mask_high, allowed_high), (mask_low, allowed_low))]
     lookups.append(_lookup(word(mask_msb, mask_lsb), ones_in, ones))
 

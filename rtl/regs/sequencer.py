@@ -170,7 +170,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         more = True
         if word_due:
             if fetched == 0:
-                more = arriving.operands != 0
+                more = arriving.has_operands == 1
             else:
                 more = fetched < next_count
         fifo.pop.next = (not fifo.empty and not next_valid and more and not control.clear
@@ -219,7 +219,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
                     bad_set_index.next = fifo.dout[32:isa.OPCODE_LSB] == set_op and not set_known
                     bad_variant.next = fifo.dout[32:isa.OPCODE_LSB] == arc_op and not variant_built
                     bad_operand.next = 0
-                    if arriving.operands == 0:
+                    if not arriving.has_operands:
                         next_valid.next = 1
                     else:
                         fetched.next = 1
