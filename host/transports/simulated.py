@@ -13,7 +13,7 @@ machine=config)``, a ``models.sim_machine.MachineConfig``; docs/machine.md,
 import math
 
 from host.transports.base import SIM_KINDS, Transport, TransportError
-from models.parameters import CLOCK_HZ
+from models.parameters import AXES, CLOCK_HZ
 from sim.backends.verilator.model import Stop
 from sim.card.card_e2e import DEFAULT_FIFO
 from sim.card.card_session import AccessError, CardSession
@@ -24,16 +24,19 @@ class SimTransport(Transport):
     ``fifo_depth`` words of FIFO; ``monitor``: the protocol checker on
     Verilator (always on for the others); ``clock_hz``: the Verilator card is
     built for it (its CLOCK_HZ reads it), the others for the default;
-    ``machine``: a ``MachineConfig``, the simulated machine on the inputs."""
+    ``machine``: a ``MachineConfig``, the simulated machine on the inputs;
+    ``axes``: the card's build (``python -m rtl.top --axes N``: STEP/DIR of N axes
+    on ``pins``, BUILD.AXES = N)."""
 
-    def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=CLOCK_HZ.default, monitor=True, machine=None):
+    def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=CLOCK_HZ.default, monitor=True, machine=None,
+                 axes=AXES.default):
         if kind not in SIM_KINDS:
             raise ValueError(f"unknown simulator {kind!r}: use one of {', '.join(SIM_KINDS)}")
         self.name = f"simulated card ({kind})"
         self.kind = kind
         self.clock_hz = clock_hz
         clock = dict(clock_hz=clock_hz) if kind == "verilator" else {}
-        self.session = CardSession(kind, fifo_depth, monitor=monitor, machine=machine, **clock)
+        self.session = CardSession(kind, fifo_depth, monitor=monitor, machine=machine, axes=axes, **clock)
         self.machine = self.session.machine
         self.device = self.session.device
         self.io_size = self.session.bars["io"]["size"]

@@ -30,7 +30,7 @@ bus cannot carry (ValueError, ``models.pci.check_access``) and raises
 """
 from myhdl import now
 
-from models.parameters import CLOCK_HZ
+from models.parameters import AXES, CLOCK_HZ
 from models.pci import CONFIG_BYTES, check_access, check_value
 from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.pci_bus import VerilatorBench
@@ -60,7 +60,8 @@ class CardSession:
     input pins (``self.machine``, a ``sim.card.sim_machine.MachineHandle``;
     None without one: the inputs stay low); ``register_bar``: the BAR
     ``read`` and ``write`` use, 0 (I/O) or 2 (the same registers at the same
-    offsets in memory space, as a host maps them where it has no port I/O).
+    offsets in memory space, as a host maps them where it has no port I/O);
+    ``axes``: the card's build (``--axes N``; the others of ``Build`` as by default).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by
@@ -69,17 +70,17 @@ class CardSession:
     """
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
-                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0):
+                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0, axes=AXES.default):
         if register_bar not in REGISTER_BARS:
             raise ValueError(f"register_bar must be 0 (I/O) or 2 (memory), not {register_bar!r}")
         self.kind = kind
         self.register_bar = register_bar
         simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
-        self.target = CardUnderTest(kind, fifo_depth, machine=simulated)
+        self.target = CardUnderTest(kind, fifo_depth, machine=simulated, axes=axes)
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":
-            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz)
+            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz, axes)
             if machine is not None:
                 self._runner.card.start_machine(machine)
         else:
@@ -187,8 +188,8 @@ class CardSession:
 
 
 class _VerilatorRunner:
-    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz):
-        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz), idsel_bit=16 + TARGET_DEVICE)
+    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz, axes):
+        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz, axes), idsel_bit=16 + TARGET_DEVICE)
         self.bench = VerilatorBench(self.card, target, host_options=host_options, monitor=monitor)
         self.bench.start()
 

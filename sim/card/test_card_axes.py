@@ -14,28 +14,16 @@ from models import instructions as isa
 from models import registers as regmap
 from models.axes import PLANES
 from models.commands import command_words
-from models.dda_axes import iterate_axes, move_start
 from models.dda_plan import ArcCommand, AxesLineCommand
 from models.parameters import Build
 from rtl.card_core import card_core, card_core_ports
 from sim.backends.clocking import clock_source
 from sim.backends.icarus import convert_and_cosimulate
 from sim.backends.waves import run_traced
-from sim.card.card_bench import FIFO_DEPTH, HALF_PERIOD, scenario_runner, wait_error, wait_idle
+from sim.card.card_bench import FIFO_DEPTH, HALF_PERIOD, axes_path, scenario_runner, wait_error, wait_idle
 from sim.card.local_bus_driver import LocalBusDriver
 
 G18, G19 = PLANES[18], PLANES[19]
-
-
-def axes_path(commands, axes):
-    """The points the golden model's moves visit, chained from the origin (a diagonal is one point)."""
-    points = [(0,) * axes]
-    for command in commands:
-        path = iterate_axes(command, axes, coord_width=Build.coord_width)
-        start = move_start(command, axes)
-        here = points[-1]
-        points += [tuple(h + p - s for h, p, s in zip(here, point, start)) for point in path.points()[1:]]
-    return points
 
 
 @block
