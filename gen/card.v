@@ -4762,7 +4762,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__operand_register4_hold
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register4_hold
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
     end
@@ -4777,7 +4777,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__operand_register5_hold
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register5_hold
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
     end
@@ -4792,7 +4792,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__operand_register6_hold
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register6_hold
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
     end
@@ -4804,7 +4804,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1__operand_register7_hold
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register7_hold
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
     end

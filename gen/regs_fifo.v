@@ -3257,7 +3257,7 @@ always @(fifo_dout) begin: sequencer0_command_header0_slots
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0__operand_register0_hold
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register0_hold
     if (reset == 0) begin
         sequencer0_operand_0 <= 0;
     end
@@ -3272,7 +3272,7 @@ always @(posedge clock, negedge reset) begin: sequencer0__operand_register0_hold
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0__operand_register1_hold
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register1_hold
     if (reset == 0) begin
         sequencer0_operand_1 <= 0;
     end
@@ -3287,7 +3287,7 @@ always @(posedge clock, negedge reset) begin: sequencer0__operand_register1_hold
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0__operand_register2_hold
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register2_hold
     if (reset == 0) begin
         sequencer0_operand_2 <= 0;
     end
@@ -3299,7 +3299,7 @@ always @(posedge clock, negedge reset) begin: sequencer0__operand_register2_hold
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0__operand_register3_hold
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register3_hold
     if (reset == 0) begin
         sequencer0_operand_3 <= 0;
     end

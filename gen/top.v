@@ -5595,7 +5595,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2__operand_register8_hold
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register8_hold
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
     end
@@ -5610,7 +5610,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2__operand_register9_hold
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register9_hold
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
     end
@@ -5625,7 +5625,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2__operand_register10_hold
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register10_hold
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
     end
@@ -5637,7 +5637,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2__operand_register11_hold
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register11_hold
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
     end

@@ -6,6 +6,7 @@ from models.parameters import AXES, COORD_WIDTH
 from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl,
                             SetPort, card_reset)
 from rtl.regs.command_header import command_header
+from rtl.regs.operand_register import operand_register, signed_low
 
 
 def _opcode_rom(value_of):
@@ -146,7 +147,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     tag_lsb, tag_msb = _field("MARK", "TAG")
     reading = command_header(fifo.dout, arriving)
     # an operand goes to the lowest register left (a LINE header clears those of its card's axes)
-    registers = [_operand_register(clock, reset, fifo.dout, slot_taken(index), line_in if index < axes else None,
+    registers = [operand_register(clock, reset, fifo.dout, slot_taken(index), line_in if index < axes else None,
                                    register) for index, register in enumerate(operands)]
 
     @always_comb
@@ -365,43 +366,10 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
     # a card of more than two axes: a LINE's displacement of axis i is operand register i
-    deltas = [_signed_low(operands[axis], axes_cmd.delta(axis)) for axis in range(axes)] if axes > 2 else []
+    deltas = [signed_low(operands[axis], axes_cmd.delta(axis)) for axis in range(axes)] if axes > 2 else []
     return (fits, reading, registers, deltas, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
             operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
             dwell_count, present, report)
-
-
-@block
-def _operand_register(clock, reset, word, take, clear, register):
-    """An operand register: takes the low bits of ``word`` at ``take``,
-    else 0 at ``clear`` (a LINE header: its axes' registers; None: never)."""
-    width = len(register)
-    if clear is None:
-        @always_seq(clock.posedge, reset=reset)
-        def hold():
-            if take:
-                register.next = word[width:]
-    else:
-        @always_seq(clock.posedge, reset=reset)
-        def hold():
-            if take:
-                register.next = word[width:]
-            elif clear:
-                register.next = 0
-
-    return hold
-
-
-@block
-def _signed_low(register, value):
-    """``value`` (signed) is the low bits of ``register``."""
-    width = len(value)
-
-    @always_comb
-    def copy():
-        value.next = register[width:].signed()
-
-    return copy
 
 
 @block

@@ -133,8 +133,10 @@ class VerilatedModel:
         self._clock_bound = True
 
     def bind_pins(self, names):
-        """The motor pins, in the order of ``PINS`` (a name the model lacks: unbound)."""
+        """The motor pins, in the order of ``PINS`` (a name the model lacks, or past the
+        names given: unbound)."""
         indices = [self.index(n) if n in self.ports else -1 for n in names]
+        indices += [-1] * (len(PINS) - len(indices))   # the harness reads one index per pin of PINS
         self._lib.vc_bind_pins(self._handle, np.array(indices, dtype=np.intc))
 
     def bind_bus(self, line_ports, idsel, idsel_bit):
