@@ -709,9 +709,8 @@ wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word77_written;
 wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
-reg [2:0] card_core0_regs_fifo1_sequencer1_arriving_count;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
-reg card_core0_regs_fifo1_sequencer1_arriving_moves;
+reg card_core0_regs_fifo1_sequencer1_bad_axes;
 reg card_core0_regs_fifo1_sequencer1_bad_header_bits;
 reg card_core0_regs_fifo1_sequencer1_bad_opcode;
 reg card_core0_regs_fifo1_sequencer1_bad_operand;
@@ -721,16 +720,14 @@ reg [3:0] card_core0_regs_fifo1_sequencer1_coord_mask;
 reg [3:0] card_core0_regs_fifo1_sequencer1_count_mask;
 wire card_core0_regs_fifo1_sequencer1_discard;
 reg [31:0] card_core0_regs_fifo1_sequencer1_dwell_left;
-reg [2:0] card_core0_regs_fifo1_sequencer1_fetched;
+reg [3:0] card_core0_regs_fifo1_sequencer1_fetched;
 reg card_core0_regs_fifo1_sequencer1_finishing;
 reg [16:0] card_core0_regs_fifo1_sequencer1_header;
 wire card_core0_regs_fifo1_sequencer1_issue;
-reg [15:0] card_core0_regs_fifo1_sequencer1_mask_high;
-reg [15:0] card_core0_regs_fifo1_sequencer1_mask_low;
+reg card_core0_regs_fifo1_sequencer1_line_in;
 wire card_core0_regs_fifo1_sequencer1_motion_done;
-reg [2:0] card_core0_regs_fifo1_sequencer1_next_count;
+reg [3:0] card_core0_regs_fifo1_sequencer1_next_count;
 reg [3:0] card_core0_regs_fifo1_sequencer1_next_error;
-reg card_core0_regs_fifo1_sequencer1_next_known;
 reg card_core0_regs_fifo1_sequencer1_next_motion;
 reg card_core0_regs_fifo1_sequencer1_next_valid;
 reg [3:0] card_core0_regs_fifo1_sequencer1_opcode;
@@ -738,11 +735,24 @@ reg [31:0] card_core0_regs_fifo1_sequencer1_operand_0;
 reg [23:0] card_core0_regs_fifo1_sequencer1_operand_1;
 reg [23:0] card_core0_regs_fifo1_sequencer1_operand_2;
 reg [23:0] card_core0_regs_fifo1_sequencer1_operand_3;
+reg [0:0] card_core0_regs_fifo1_sequencer1_plane_u;
+reg [0:0] card_core0_regs_fifo1_sequencer1_plane_v;
 reg card_core0_regs_fifo1_sequencer1_set_known;
+reg [3:0] card_core0_regs_fifo1_sequencer1_slot_taken;
+reg [3:0] card_core0_regs_fifo1_sequencer1_slots_left;
 reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
+reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
+reg card_core0_regs_fifo1_sequencer1_arriving_moves;
+reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
+reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_slots;
+reg [0:0] card_core0_regs_fifo1_sequencer1_arriving_u;
+reg [0:0] card_core0_regs_fifo1_sequencer1_arriving_v;
+reg card_core0_regs_fifo1_sequencer1_arriving_known;
+reg card_core0_regs_fifo1_sequencer1_arriving_reserved;
+reg card_core0_regs_fifo1_sequencer1_arriving_out_of_range;
 reg card_core0_regs_fifo1_sequencer1_dda_start;
 reg card_core0_regs_fifo1_sequencer1_dda_done;
 wire card_core0_regs_fifo1_sequencer1_dda_ready;
@@ -761,6 +771,15 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
+reg [0:0] card_core0_regs_fifo1_sequencer1_axes_cmd_u;
+reg [0:0] card_core0_regs_fifo1_sequencer1_axes_cmd_v;
+reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_high;
+reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_low;
+reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
+reg card_core0_regs_fifo1_sequencer1_command_header1_has_axes;
+reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_lead_count;
+reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_ones;
+reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_zero_count;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
 wire card_core0_regs_fifo1_feed_rate1_advancing;
@@ -914,174 +933,183 @@ reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
 reg card_core0_regs_fifo1_status_words1_low_before;
 wire [1:0] card_core0_regs_fifo1_status_words1_words_quadrant;
-reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
-reg card_core0_dda_arc1_dda_setup1_carry;
-reg [48:0] card_core0_dda_arc1_dda_setup1_gap;
-reg [1:0] card_core0_dda_arc1_dda_setup1_gap_op;
-reg card_core0_dda_arc1_dda_setup1_grew;
-reg card_core0_dda_arc1_dda_setup1_invert;
-reg card_core0_dda_arc1_dda_setup1_m_is_y;
-reg [27:0] card_core0_dda_arc1_dda_setup1_major;
-reg [23:0] card_core0_dda_arc1_dda_setup1_multiplier;
-reg [1:0] card_core0_dda_arc1_dda_setup1_next_square;
-reg [2:0] card_core0_dda_arc1_dda_setup1_next_state;
-reg [4:0] card_core0_dda_arc1_dda_setup1_next_step;
-reg [5:0] card_core0_dda_arc1_dda_setup1_ones_left;
-reg [48:0] card_core0_dda_arc1_dda_setup1_operand;
-reg [1:0] card_core0_dda_arc1_dda_setup1_operand_op;
-reg card_core0_dda_arc1_dda_setup1_pick_x;
-reg [2:0] card_core0_dda_arc1_dda_setup1_source;
-reg card_core0_dda_arc1_dda_setup1_source_on;
-reg [24:0] card_core0_dda_arc1_dda_setup1_source_value;
-reg [1:0] card_core0_dda_arc1_dda_setup1_square;
-reg [2:0] card_core0_dda_arc1_dda_setup1_state;
-reg [4:0] card_core0_dda_arc1_dda_setup1_step;
-wire [48:0] card_core0_dda_arc1_dda_setup1_total;
-reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xs;
-reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ys;
-reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_xe;
-reg [23:0] card_core0_dda_arc1_dda_setup1_plan_mag_ye;
-reg [24:0] card_core0_dda_arc1_dda_setup1_root_root;
-wire [47:0] card_core0_dda_arc1_dda_setup1_root_radicand;
-wire card_core0_dda_arc1_dda_setup1_root_load;
-reg card_core0_dda_arc1_dda_setup1_root_grows;
-reg [27:0] card_core0_dda_arc1_dda_setup1_plan_threshold;
-reg card_core0_dda_arc1_dda_setup1_plan_too_wide;
-reg card_core0_dda_arc1_dda_setup1_plan_off_circle;
-reg card_core0_dda_arc1_dda_setup1_plan_start_below_x;
-reg card_core0_dda_arc1_dda_setup1_plan_start_same_x;
-reg card_core0_dda_arc1_dda_setup1_plan_start_below_y;
-reg card_core0_dda_arc1_dda_setup1_plan_start_same_y;
-reg [24:0] card_core0_dda_arc1_dda_setup1_plan_radius;
-reg card_core0_dda_arc1_dda_setup1_plan_beyond;
-reg signed [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_diff;
-reg [26:0] card_core0_dda_arc1_dda_setup1_plan_totals_max;
-wire card_core0_dda_arc1_dda_setup1_plan_done;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd;
-reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
-reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
-reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
-reg [23:0] card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys;
-reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
-reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_turn;
-wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe;
-wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs;
-wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye;
-wire card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
-reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead;
-reg [2:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings;
-reg [1:0] card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end;
-reg card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre;
-reg card_core0_dda_arc1_dda_setup1_dda_root1_all_ones;
-reg card_core0_dda_arc1_dda_setup1_dda_root1_fits;
-reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_keep;
-reg [47:0] card_core0_dda_arc1_dda_setup1_dda_root1_radicand;
-reg [25:0] card_core0_dda_arc1_dda_setup1_dda_root1_remainder;
-reg card_core0_dda_arc1_dda_setup1_dda_root1_started;
-reg [4:0] card_core0_dda_arc1_dda_setup1_dda_root1_steps;
-wire card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken;
-reg [1:0] card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice;
-reg card_core0_dda_arc1_dda_check1_variant_built;
-wire card_core0_dda_arc1_dda_check1_move_offer;
-wire card_core0_dda_arc1_dda_check1_move_take;
-reg card_core0_dda_arc1_dda_check1_move_error;
-reg card_core0_dda_arc1_dda_check1_move_zero;
-reg card_core0_dda_arc1_dda_check1_move_line;
-reg [1:0] card_core0_dda_arc1_dda_check1_move_variant;
-reg card_core0_dda_arc1_dda_check1_move_ccw;
-reg card_core0_dda_arc1_dda_check1_move_blend;
-reg card_core0_dda_arc1_dda_check1_move_right;
-reg card_core0_dda_arc1_dda_check1_move_up;
-reg card_core0_dda_arc1_dda_check1_move_x_inward;
-reg [1:0] card_core0_dda_arc1_dda_check1_move_quadrant;
-reg [2:0] card_core0_dda_arc1_dda_check1_move_crossings;
-reg [1:0] card_core0_dda_arc1_dda_check1_move_target_x;
-reg [1:0] card_core0_dda_arc1_dda_check1_move_target_y;
-reg [23:0] card_core0_dda_arc1_dda_check1_move_mag_x;
-reg [23:0] card_core0_dda_arc1_dda_check1_move_mag_y;
-reg [23:0] card_core0_dda_arc1_dda_check1_move_end_x;
-reg [23:0] card_core0_dda_arc1_dda_check1_move_end_y;
-reg [23:0] card_core0_dda_arc1_dda_check1_move_radius;
-reg signed [26:0] card_core0_dda_arc1_dda_check1_move_totals_diff;
-reg [26:0] card_core0_dda_arc1_dda_check1_move_totals_max;
-reg [27:0] card_core0_dda_arc1_dda_check1_move_threshold;
-reg signed [29:0] card_core0_dda_arc1_dda_check1_move_acc_init;
-reg card_core0_dda_arc1_dda_check1_move_acc_carry;
-reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_in;
-reg signed [26:0] card_core0_dda_arc1_dda_check1_move_bias_out;
-reg signed [29:0] card_core0_dda_arc1_dda_run1_acc_x;
-reg signed [29:0] card_core0_dda_arc1_dda_run1_acc_y;
-reg card_core0_dda_arc1_dda_run1_active;
-reg card_core0_dda_arc1_dda_run1_ahead_x;
-reg card_core0_dda_arc1_dda_run1_ahead_y;
-reg card_core0_dda_arc1_dda_run1_at_x;
-reg card_core0_dda_arc1_dda_run1_at_y;
-reg card_core0_dda_arc1_dda_run1_ccw;
-reg [2:0] card_core0_dda_arc1_dda_run1_crossings;
-reg [23:0] card_core0_dda_arc1_dda_run1_end_x;
-reg [23:0] card_core0_dda_arc1_dda_run1_end_y;
-reg card_core0_dda_arc1_dda_run1_finished;
-reg card_core0_dda_arc1_dda_run1_first;
-reg card_core0_dda_arc1_dda_run1_go_x;
-reg card_core0_dda_arc1_dda_run1_go_y;
-reg [23:0] card_core0_dda_arc1_dda_run1_goal_x;
-reg [23:0] card_core0_dda_arc1_dda_run1_goal_y;
-reg [29:0] card_core0_dda_arc1_dda_run1_kept_x;
-reg [29:0] card_core0_dda_arc1_dda_run1_kept_y;
-reg [29:0] card_core0_dda_arc1_dda_run1_less_x;
-reg [29:0] card_core0_dda_arc1_dda_run1_less_y;
-reg card_core0_dda_arc1_dda_run1_near_x;
-reg card_core0_dda_arc1_dda_run1_near_y;
-reg card_core0_dda_arc1_dda_run1_next_piece;
-reg card_core0_dda_arc1_dda_run1_over_x;
-reg card_core0_dda_arc1_dda_run1_over_y;
-reg [1:0] card_core0_dda_arc1_dda_run1_quadrant;
-reg [23:0] card_core0_dda_arc1_dda_run1_radius;
-reg card_core0_dda_arc1_dda_run1_right;
-reg card_core0_dda_arc1_dda_run1_saturate_x;
-reg card_core0_dda_arc1_dda_run1_saturate_y;
-reg [23:0] card_core0_dda_arc1_dda_run1_stepped_x;
-reg [23:0] card_core0_dda_arc1_dda_run1_stepped_y;
-reg [30:0] card_core0_dda_arc1_dda_run1_sum_x;
-reg [30:0] card_core0_dda_arc1_dda_run1_sum_y;
-reg card_core0_dda_arc1_dda_run1_tail;
-reg card_core0_dda_arc1_dda_run1_tail_taken;
-wire card_core0_dda_arc1_dda_run1_taking;
-reg [1:0] card_core0_dda_arc1_dda_run1_target_x;
-reg [1:0] card_core0_dda_arc1_dda_run1_target_y;
-reg [27:0] card_core0_dda_arc1_dda_run1_threshold;
-reg card_core0_dda_arc1_dda_run1_threshold_carry;
-reg card_core0_dda_arc1_dda_run1_up;
-reg [1:0] card_core0_dda_arc1_dda_run1_variant;
-reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_y;
-reg [23:0] card_core0_dda_arc1_dda_run1_step_mag_x;
-reg card_core0_dda_arc1_dda_run1_step_step_x;
-reg card_core0_dda_arc1_dda_run1_step_step_y;
-reg card_core0_dda_arc1_dda_run1_step_line;
-reg card_core0_dda_arc1_dda_run1_step_x_inward;
-reg card_core0_dda_arc1_dda_run1_step_outward_near;
-reg card_core0_dda_arc1_dda_run1_step_inward_near;
-wire card_core0_dda_arc1_dda_run1_step_last;
-reg card_core0_dda_arc1_dda_run1_step_pending;
-reg card_core0_dda_arc1_dda_run1_step_finished;
-reg card_core0_dda_arc1_dda_run1_step_new_piece;
-reg card_core0_dda_arc1_dda_run1_step_blend;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_difference;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_left1_larger;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
-reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
+reg [0:0] card_core0_dda_axes0_u_run;
+reg [0:0] card_core0_dda_axes0_v_run;
+reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_acc_bits;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_carry;
+reg [48:0] card_core0_dda_axes0_dda_arc1_dda_setup1_gap;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_gap_op;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_grew;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_invert;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y;
+reg [27:0] card_core0_dda_axes0_dda_arc1_dda_setup1_major;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_multiplier;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_next_square;
+reg [2:0] card_core0_dda_axes0_dda_arc1_dda_setup1_next_state;
+reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_next_step;
+reg [5:0] card_core0_dda_axes0_dda_arc1_dda_setup1_ones_left;
+reg [48:0] card_core0_dda_axes0_dda_arc1_dda_setup1_operand;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_operand_op;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x;
+reg [2:0] card_core0_dda_axes0_dda_arc1_dda_setup1_source;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_source_on;
+reg [24:0] card_core0_dda_axes0_dda_arc1_dda_setup1_source_value;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_square;
+reg [2:0] card_core0_dda_axes0_dda_arc1_dda_setup1_state;
+reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_step;
+wire [48:0] card_core0_dda_axes0_dda_arc1_dda_setup1_total;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye;
+reg [24:0] card_core0_dda_axes0_dda_arc1_dda_setup1_root_root;
+wire [47:0] card_core0_dda_axes0_dda_arc1_dda_setup1_root_radicand;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_root_load;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_root_grows;
+reg [27:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_too_wide;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_x;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_y;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_y;
+reg [24:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_beyond;
+reg signed [26:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_diff;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_max;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_plan_done;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_end_odd;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_turn;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ahead;
+reg [2:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_centre;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_all_ones;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits;
+reg [25:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_keep;
+reg [47:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_radicand;
+reg [25:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_remainder;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started;
+reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_dda_sequence1_plan_taken;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_variant_built;
+wire card_core0_dda_axes0_dda_arc1_dda_check1_move_offer;
+wire card_core0_dda_axes0_dda_arc1_dda_check1_move_take;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_error;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_zero;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_line;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_variant;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_ccw;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_blend;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_right;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_up;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_x_inward;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_quadrant;
+reg [2:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_crossings;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_target_x;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_target_y;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_x;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_y;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_end_x;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_end_y;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_radius;
+reg signed [26:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_totals_diff;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_totals_max;
+reg [27:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_threshold;
+reg signed [29:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_init;
+reg card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_carry;
+reg signed [26:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_bias_in;
+reg signed [26:0] card_core0_dda_axes0_dda_arc1_dda_check1_move_bias_out;
+reg signed [29:0] card_core0_dda_axes0_dda_arc1_dda_run1_acc_x;
+reg signed [29:0] card_core0_dda_axes0_dda_arc1_dda_run1_acc_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_active;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_ahead_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_ahead_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_at_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_at_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_ccw;
+reg [2:0] card_core0_dda_axes0_dda_arc1_dda_run1_crossings;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_end_x;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_end_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_finished;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_first;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_go_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_go_y;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_goal_x;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_goal_y;
+reg [29:0] card_core0_dda_axes0_dda_arc1_dda_run1_kept_x;
+reg [29:0] card_core0_dda_axes0_dda_arc1_dda_run1_kept_y;
+reg [29:0] card_core0_dda_axes0_dda_arc1_dda_run1_less_x;
+reg [29:0] card_core0_dda_axes0_dda_arc1_dda_run1_less_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_near_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_near_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_next_piece;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_over_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_over_y;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_run1_quadrant;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_radius;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_right;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_saturate_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_saturate_y;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_stepped_x;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_stepped_y;
+reg [30:0] card_core0_dda_axes0_dda_arc1_dda_run1_sum_x;
+reg [30:0] card_core0_dda_axes0_dda_arc1_dda_run1_sum_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_tail;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_tail_taken;
+wire card_core0_dda_axes0_dda_arc1_dda_run1_taking;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_run1_target_x;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_run1_target_y;
+reg [27:0] card_core0_dda_axes0_dda_arc1_dda_run1_threshold;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_threshold_carry;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_up;
+reg [1:0] card_core0_dda_axes0_dda_arc1_dda_run1_variant;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y;
+reg [23:0] card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_line;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_outward_near;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near;
+wire card_core0_dda_axes0_dda_arc1_dda_run1_step_last;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_pending;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_finished;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece;
+reg card_core0_dda_axes0_dda_arc1_dda_run1_step_blend;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_step;
+reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term;
+reg [1:0] card_core0_dda_axes0__plane_queue0_moves;
+reg [0:0] card_core0_dda_axes0__plane_queue0_u_next;
+reg [0:0] card_core0_dda_axes0__plane_queue0_v_next;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
@@ -4424,29 +4452,117 @@ assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_
 assign card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_arriving
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        1: card_core0_regs_fifo1_sequencer1_arriving_count = 2;
-        2: card_core0_regs_fifo1_sequencer1_arriving_count = 4;
-        3: card_core0_regs_fifo1_sequencer1_arriving_count = 2;
-        4: card_core0_regs_fifo1_sequencer1_arriving_count = 1;
-        5: card_core0_regs_fifo1_sequencer1_arriving_count = 1;
-        6: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        7: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        8: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        9: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        10: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        11: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        12: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        13: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        14: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
-        default: card_core0_regs_fifo1_sequencer1_arriving_count = 0;
+        0: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 4;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
     endcase
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_arriving_kind
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 2;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 2;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
+    endcase
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 1;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
+    endcase
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 1;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
+    endcase
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        1: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
+        2: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
+        3: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
+        4: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
+        5: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
+        6: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
+        7: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        8: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        9: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        10: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        11: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        12: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        13: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        14: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+        default: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
+    endcase
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_moves = 1;
@@ -4468,98 +4584,250 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_count
-    case (card_core0_regs_fifo1_sequencer1_opcode)
-        0: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        1: card_core0_regs_fifo1_sequencer1_next_count = 2;
-        2: card_core0_regs_fifo1_sequencer1_next_count = 4;
-        3: card_core0_regs_fifo1_sequencer1_next_count = 2;
-        4: card_core0_regs_fifo1_sequencer1_next_count = 1;
-        5: card_core0_regs_fifo1_sequencer1_next_count = 1;
-        6: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        7: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        8: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        9: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        10: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        11: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        12: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        13: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        14: card_core0_regs_fifo1_sequencer1_next_count = 0;
-        default: card_core0_regs_fifo1_sequencer1_next_count = 0;
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup16_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        1: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        2: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        3: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        4: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        5: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
+        6: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        7: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        8: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        9: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        10: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        11: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        12: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        13: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        14: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
+        default: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
     endcase
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_valid
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup17_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        1: card_core0_regs_fifo1_sequencer1_next_known = 1;
-        2: card_core0_regs_fifo1_sequencer1_next_known = 1;
-        3: card_core0_regs_fifo1_sequencer1_next_known = 1;
-        4: card_core0_regs_fifo1_sequencer1_next_known = 1;
-        5: card_core0_regs_fifo1_sequencer1_next_known = 1;
-        6: card_core0_regs_fifo1_sequencer1_next_known = 1;
-        7: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        8: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        9: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        10: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        11: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        12: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        13: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        14: card_core0_regs_fifo1_sequencer1_next_known = 0;
-        default: card_core0_regs_fifo1_sequencer1_next_known = 0;
+        0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62449;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62463;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62448;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
     endcase
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_mask_high
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup18_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        1: card_core0_regs_fifo1_sequencer1_mask_high = 61441;
-        2: card_core0_regs_fifo1_sequencer1_mask_high = 61441;
-        3: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        4: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        5: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        6: card_core0_regs_fifo1_sequencer1_mask_high = 61440;
-        7: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        8: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        9: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        10: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        11: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        12: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        13: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        14: card_core0_regs_fifo1_sequencer1_mask_high = 0;
-        default: card_core0_regs_fifo1_sequencer1_mask_high = 0;
+        0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 65535;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 15;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 65535;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
     endcase
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_lookup_mask_low
-    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        1: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        2: card_core0_regs_fifo1_sequencer1_mask_low = 8191;
-        3: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        4: card_core0_regs_fifo1_sequencer1_mask_low = 15;
-        5: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        6: card_core0_regs_fifo1_sequencer1_mask_low = 65535;
-        7: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        8: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        9: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        10: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        11: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        12: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        13: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        14: card_core0_regs_fifo1_sequencer1_mask_low = 0;
-        default: card_core0_regs_fifo1_sequencer1_mask_low = 0;
+always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup19_look_up
+    case (card_core0_regs_fifo1_fifo_dout[26-1:20])
+        0: card_core0_regs_fifo1_sequencer1_command_header1_ones = 0;
+        1: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
+        3: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        4: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        6: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        7: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        8: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        10: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        11: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        12: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        13: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        14: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        15: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        16: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
+        17: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        18: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        19: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        20: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        21: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        22: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        23: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        24: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        25: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        26: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        27: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        28: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        29: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        30: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        31: card_core0_regs_fifo1_sequencer1_command_header1_ones = 5;
+        32: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
+        33: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        34: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        35: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        36: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        37: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        38: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        39: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        40: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        41: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        42: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        43: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        44: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        45: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        46: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        47: card_core0_regs_fifo1_sequencer1_command_header1_ones = 5;
+        48: card_core0_regs_fifo1_sequencer1_command_header1_ones = 2;
+        49: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        50: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        51: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        52: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        53: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        54: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        55: card_core0_regs_fifo1_sequencer1_command_header1_ones = 5;
+        56: card_core0_regs_fifo1_sequencer1_command_header1_ones = 3;
+        57: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        58: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        59: card_core0_regs_fifo1_sequencer1_command_header1_ones = 5;
+        60: card_core0_regs_fifo1_sequencer1_command_header1_ones = 4;
+        61: card_core0_regs_fifo1_sequencer1_command_header1_ones = 5;
+        62: card_core0_regs_fifo1_sequencer1_command_header1_ones = 5;
+        default: card_core0_regs_fifo1_sequencer1_command_header1_ones = 6;
     endcase
+end
+
+
+always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_command_header1_has_axes, card_core0_regs_fifo1_sequencer1_command_header1_ones, card_core0_regs_fifo1_sequencer1_command_header1_allowed_high, card_core0_regs_fifo1_sequencer1_command_header1_allowed_low, card_core0_regs_fifo1_sequencer1_command_header1_lead_count, card_core0_regs_fifo1_sequencer1_command_header1_fixed_count) begin: card_core0_regs_fifo1_sequencer1_command_header1_frame
+    card_core0_regs_fifo1_sequencer1_arriving_operands = card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
+    if (card_core0_regs_fifo1_sequencer1_command_header1_has_axes) begin
+        if ((card_core0_regs_fifo1_fifo_dout[26-1:20] == 0)) begin
+            card_core0_regs_fifo1_sequencer1_arriving_operands = (card_core0_regs_fifo1_sequencer1_command_header1_fixed_count + card_core0_regs_fifo1_sequencer1_command_header1_zero_count);
+        end
+        else begin
+            card_core0_regs_fifo1_sequencer1_arriving_operands = ((card_core0_regs_fifo1_sequencer1_command_header1_fixed_count + card_core0_regs_fifo1_sequencer1_command_header1_lead_count) + card_core0_regs_fifo1_sequencer1_command_header1_ones);
+        end
+    end
+    card_core0_regs_fifo1_sequencer1_arriving_reserved = (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_command_header1_allowed_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_command_header1_allowed_low)) != 0));
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_check_axes
+    card_core0_regs_fifo1_sequencer1_arriving_out_of_range = 1'b0;
+    if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1)) begin
+        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] & 60) != 0);
+    end
+    else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 3)) begin
+        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) && (card_core0_regs_fifo1_fifo_dout[26-1:20] != 3));
+    end
+    else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2)) begin
+        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[16-1:13] >= 2) || (card_core0_regs_fifo1_fifo_dout[20-1:17] >= 2) || ((card_core0_regs_fifo1_fifo_dout[16-1:13] == card_core0_regs_fifo1_fifo_dout[20-1:17]) && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)) || (card_core0_regs_fifo1_fifo_dout[26-1:20] != 0));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_plane
+    card_core0_regs_fifo1_sequencer1_arriving_u = card_core0_regs_fifo1_fifo_dout[13+:1];
+    card_core0_regs_fifo1_sequencer1_arriving_v = card_core0_regs_fifo1_fifo_dout[17+:1];
+    if (((card_core0_regs_fifo1_fifo_dout[16-1:13] == 0) && (card_core0_regs_fifo1_fifo_dout[20-1:17] == 0))) begin
+        card_core0_regs_fifo1_sequencer1_arriving_v = 1;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_slots
+    card_core0_regs_fifo1_sequencer1_arriving_slots = 15;
+    if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1)) begin
+        if ((card_core0_regs_fifo1_fifo_dout[26-1:20] == 0)) begin
+            card_core0_regs_fifo1_sequencer1_arriving_slots = 3;
+        end
+        else begin
+            card_core0_regs_fifo1_sequencer1_arriving_slots = card_core0_regs_fifo1_fifo_dout[20+:4];
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register4_hold
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_sequencer1_slot_taken[0]) begin
+            card_core0_regs_fifo1_sequencer1_operand_0 <= card_core0_regs_fifo1_fifo_dout[32-1:0];
+        end
+        else if (card_core0_regs_fifo1_sequencer1_line_in) begin
+            card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register5_hold
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_sequencer1_slot_taken[1]) begin
+            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
+        end
+        else if (card_core0_regs_fifo1_sequencer1_line_in) begin
+            card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register6_hold
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_sequencer1_slot_taken[2]) begin
+            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register7_hold
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
+    end
+    else begin
+        if (card_core0_regs_fifo1_sequencer1_slot_taken[3]) begin
+            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
+        end
+    end
 end
 
 
 always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
     case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
-        1: card_core0_regs_fifo1_sequencer1_coord_mask = 3;
+        1: card_core0_regs_fifo1_sequencer1_coord_mask = 15;
         2: card_core0_regs_fifo1_sequencer1_coord_mask = 15;
         3: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
         4: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
@@ -4583,7 +4851,7 @@ always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_s
         0: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         1: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         2: card_core0_regs_fifo1_sequencer1_count_mask = 0;
-        3: card_core0_regs_fifo1_sequencer1_count_mask = 3;
+        3: card_core0_regs_fifo1_sequencer1_count_mask = 15;
         4: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         5: card_core0_regs_fifo1_sequencer1_count_mask = 0;
         6: card_core0_regs_fifo1_sequencer1_count_mask = 0;
@@ -4632,18 +4900,35 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_arriving_count, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
+always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arriving_has_operands, card_core0_regs_fifo1_sequencer1_state, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer1_next_valid, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_next_count, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_fetch_request
     reg more;
     more = 1'b1;
     if (card_core0_regs_fifo1_sequencer1_word_due) begin
         if ((card_core0_regs_fifo1_sequencer1_fetched == 0)) begin
-            more = (card_core0_regs_fifo1_sequencer1_arriving_count != 0);
+            more = (card_core0_regs_fifo1_sequencer1_arriving_has_operands == 1);
         end
         else begin
             more = (card_core0_regs_fifo1_sequencer1_fetched < card_core0_regs_fifo1_sequencer1_next_count);
         end
     end
     card_core0_regs_fifo1_fifo_pop = ((!card_core0_regs_fifo1_fifo_empty) && (!card_core0_regs_fifo1_sequencer1_next_valid) && more && (!card_core0_regs_fifo1_sequencer_clear) && (card_core0_regs_fifo1_sequencer1_state != 3'b100));
+end
+
+
+always @(card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
+    reg [4-1:0] taken;
+    integer index;
+    card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+    taken = 4'h0;
+    if ((card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched != 0) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard))) begin
+        for (index=4-1; index>=0; index=index-1) begin
+            if (card_core0_regs_fifo1_sequencer1_slots_left[index]) begin
+                taken = 0;
+                taken[index] = 1;
+            end
+        end
+    end
+    card_core0_regs_fifo1_sequencer1_slot_taken = taken;
 end
 
 
@@ -4654,21 +4939,22 @@ assign card_core0_regs_fifo1_sequencer1_discard = (card_core0_regs_fifo1_clear_e
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_fetch
     if (reset == 0) begin
-        card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_axes <= 0;
         card_core0_regs_fifo1_sequencer1_bad_variant <= 0;
+        card_core0_regs_fifo1_sequencer1_plane_u <= 0;
         card_core0_regs_fifo1_sequencer1_next_motion <= 0;
+        card_core0_regs_fifo1_sequencer1_slots_left <= 0;
         card_core0_regs_fifo1_sequencer1_bad_set_index <= 0;
-        card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
         card_core0_regs_fifo1_sequencer1_bad_opcode <= 0;
         card_core0_regs_fifo1_sequencer1_word_due <= 0;
         card_core0_regs_fifo1_sequencer1_next_valid <= 0;
-        card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
+        card_core0_regs_fifo1_sequencer1_plane_v <= 1;
         card_core0_regs_fifo1_sequencer1_header <= 0;
-        card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
+        card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
         card_core0_regs_fifo1_sequencer1_bad_header_bits <= 0;
         card_core0_regs_fifo1_sequencer1_opcode <= 0;
+        card_core0_regs_fifo1_sequencer1_next_count <= 0;
         card_core0_regs_fifo1_sequencer1_fetched <= 0;
-        card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
     end
     else begin
         card_core0_regs_fifo1_sequencer1_word_due <= card_core0_regs_fifo1_fifo_pop;
@@ -4686,12 +4972,17 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                     card_core0_regs_fifo1_sequencer1_opcode <= card_core0_regs_fifo1_fifo_dout[32-1:28];
                     card_core0_regs_fifo1_sequencer1_header <= card_core0_regs_fifo1_fifo_dout[17-1:0];
                     card_core0_regs_fifo1_sequencer1_next_motion <= card_core0_regs_fifo1_sequencer1_arriving_moves;
-                    card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_next_known);
-                    card_core0_regs_fifo1_sequencer1_bad_header_bits <= (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_mask_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_mask_low)) != 0));
+                    card_core0_regs_fifo1_sequencer1_next_count <= card_core0_regs_fifo1_sequencer1_arriving_operands;
+                    card_core0_regs_fifo1_sequencer1_slots_left <= card_core0_regs_fifo1_sequencer1_arriving_slots;
+                    card_core0_regs_fifo1_sequencer1_plane_u <= card_core0_regs_fifo1_sequencer1_arriving_u;
+                    card_core0_regs_fifo1_sequencer1_plane_v <= card_core0_regs_fifo1_sequencer1_arriving_v;
+                    card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_arriving_known);
+                    card_core0_regs_fifo1_sequencer1_bad_header_bits <= card_core0_regs_fifo1_sequencer1_arriving_reserved;
+                    card_core0_regs_fifo1_sequencer1_bad_axes <= card_core0_regs_fifo1_sequencer1_arriving_out_of_range;
                     card_core0_regs_fifo1_sequencer1_bad_set_index <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 4) && (!card_core0_regs_fifo1_sequencer1_set_known));
                     card_core0_regs_fifo1_sequencer1_bad_variant <= ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2) && (!card_core0_regs_fifo1_sequencer1_variant_built));
                     card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
-                    if ((card_core0_regs_fifo1_sequencer1_arriving_count == 0)) begin
+                    if ((!card_core0_regs_fifo1_sequencer1_arriving_has_operands)) begin
                         card_core0_regs_fifo1_sequencer1_next_valid <= 1;
                     end
                     else begin
@@ -4699,21 +4990,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                     end
                 end
                 else begin
-                    case (card_core0_regs_fifo1_sequencer1_fetched)
-                        'h1: begin
-                            card_core0_regs_fifo1_sequencer1_operand_0 <= card_core0_regs_fifo1_fifo_dout;
-                        end
-                        'h2: begin
-                            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
-                        end
-                        'h3: begin
-                            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
-                        end
-                        default: begin
-                            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
-                        end
-                    endcase
-                    if (((card_core0_regs_fifo1_sequencer1_coord_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_coord_fits)) || (card_core0_regs_fifo1_sequencer1_count_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_count_fits)))) begin
+                    card_core0_regs_fifo1_sequencer1_slots_left <= (card_core0_regs_fifo1_sequencer1_slots_left & (~card_core0_regs_fifo1_sequencer1_slot_taken));
+                    if (((card_core0_regs_fifo1_sequencer1_fetched <= 4) && ((card_core0_regs_fifo1_sequencer1_coord_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_coord_fits)) || (card_core0_regs_fifo1_sequencer1_count_mask[($signed({1'b0, card_core0_regs_fifo1_sequencer1_fetched}) - 1)] && (!card_core0_regs_fifo1_sequencer1_arriving_count_fits))))) begin
                         card_core0_regs_fifo1_sequencer1_bad_operand <= 1;
                     end
                     if ((card_core0_regs_fifo1_sequencer1_fetched == card_core0_regs_fifo1_sequencer1_next_count)) begin
@@ -4730,7 +5008,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits) begin: card_core0_regs_fifo1_sequencer1_check
+always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits, card_core0_regs_fifo1_sequencer1_bad_axes) begin: card_core0_regs_fifo1_sequencer1_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -4740,7 +5018,7 @@ always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_seq
     else if (card_core0_regs_fifo1_sequencer1_bad_header_bits) begin
         result = 2;
     end
-    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand || card_core0_regs_fifo1_sequencer1_bad_variant)) begin
+    else if ((card_core0_regs_fifo1_sequencer1_bad_set_index || card_core0_regs_fifo1_sequencer1_bad_operand || card_core0_regs_fifo1_sequencer1_bad_variant || card_core0_regs_fifo1_sequencer1_bad_axes)) begin
         result = 3;
     end
     card_core0_regs_fifo1_sequencer1_next_error = result;
@@ -4870,7 +5148,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_d
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_sequencer1_operand_3, card_core0_regs_fifo1_sequencer1_operand_1, card_core0_regs_fifo1_sequencer1_header, card_core0_regs_fifo1_sequencer1_opcode, card_core0_regs_fifo1_sequencer1_operand_2) begin: card_core0_regs_fifo1_sequencer1_present
+always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_sequencer1_plane_u, card_core0_regs_fifo1_sequencer1_operand_3, card_core0_regs_fifo1_sequencer1_operand_1, card_core0_regs_fifo1_sequencer1_header, card_core0_regs_fifo1_sequencer1_opcode, card_core0_regs_fifo1_sequencer1_plane_v, card_core0_regs_fifo1_sequencer1_operand_2) begin: card_core0_regs_fifo1_sequencer1_present
     card_core0_regs_fifo1_sequencer1_dda_line = (card_core0_regs_fifo1_sequencer1_opcode == 1);
     card_core0_regs_fifo1_sequencer1_dda_ccw = card_core0_regs_fifo1_sequencer1_header[0];
     card_core0_regs_fifo1_sequencer1_dda_blend = card_core0_regs_fifo1_sequencer1_header[16];
@@ -4894,6 +5172,8 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
     card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
     card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
     card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
+    card_core0_regs_fifo1_sequencer1_axes_cmd_u = card_core0_regs_fifo1_sequencer1_plane_u;
+    card_core0_regs_fifo1_sequencer1_axes_cmd_v = card_core0_regs_fifo1_sequencer1_plane_v;
 end
 
 
@@ -6351,7 +6631,7 @@ assign card_core0_regs_fifo1_reg_word47_shown = card_core0_regs_fifo1_pulse_out1
 assign card_core0_regs_fifo1_reg_word48_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
-always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_magnitudes
+always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -6384,280 +6664,280 @@ always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequence
     less_ys = (card_core0_regs_fifo1_sequencer1_dda_ys[24-1:0] + sign_ys);
     less_xe = (card_core0_regs_fifo1_sequencer1_dda_xe[24-1:0] + sign_xe);
     less_ye = (card_core0_regs_fifo1_sequencer1_dda_ye[24-1:0] + sign_ye);
-    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs = (less_xs ^ sign_xs);
-    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys = (less_ys ^ sign_ys);
-    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe = (less_xe ^ sign_xe);
-    card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye = (less_ye ^ sign_ye);
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xs = (less_xs ^ sign_xs);
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_ys = (less_ys ^ sign_ys);
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xe = (less_xe ^ sign_xe);
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_latch
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_latch
     if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
-        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
-        card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
-        card_core0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
-        card_core0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
-        card_core0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
-        card_core0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line <= card_core0_regs_fifo1_sequencer1_dda_line;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant <= card_core0_regs_fifo1_sequencer1_dda_variant;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw <= card_core0_regs_fifo1_sequencer1_dda_ccw;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_blend <= card_core0_regs_fifo1_sequencer1_dda_blend;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs <= (card_core0_regs_fifo1_sequencer1_dda_xs < 0);
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys <= (card_core0_regs_fifo1_sequencer1_dda_ys < 0);
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe <= (card_core0_regs_fifo1_sequencer1_dda_xe < 0);
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye <= (card_core0_regs_fifo1_sequencer1_dda_ye < 0);
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs <= card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xs;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys <= card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_ys;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe <= card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye <= card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_ye;
     end
 end
 
 
 
-assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs = (card_core0_dda_arc1_dda_setup1_plan_mag_xs == 0);
-assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys = (card_core0_dda_arc1_dda_setup1_plan_mag_ys == 0);
-assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe = (card_core0_dda_arc1_dda_setup1_plan_mag_xe == 0);
-assign card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye = (card_core0_dda_arc1_dda_setup1_plan_mag_ye == 0);
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs = (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs == 0);
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys = (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys == 0);
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe = (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe == 0);
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye = (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye == 0);
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys, card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys, card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_quadrants
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     q_s = 2'h0;
     q_e = 2'h0;
-    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+    if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw) begin
+        if (((!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
             q_s = 0;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
+        else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 1;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
+        else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
+        if (((!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 0;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+        else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
+        else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        card_core0_dda_arc1_dda_setup1_dda_latch1_turn = (q_e - q_s);
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_turn = (q_e - q_s);
     end
     else begin
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
+        if (((!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys))) begin
             q_s = 0;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
+        else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys))) begin
             q_s = 1;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && card_core0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
+        else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_xs || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs) && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
+        if (((!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
+        else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 1;
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
+        else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe && (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        card_core0_dda_arc1_dda_setup1_dda_latch1_turn = (q_s - q_e);
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_turn = (q_s - q_e);
     end
-    card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant = q_s;
-    card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd = q_e[0];
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_start_quadrant = q_s;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_end_odd = q_e[0];
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_latch1_geometry
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_geometry
     reg ahead;
     ahead = 1'b0;
-    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
-        ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_arc1_dda_setup1_plan_start_same_y));
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw)) begin
+        ahead = ((!card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_x) && (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_y || card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_y));
     end
     else begin
-        ahead = ((!card_core0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_arc1_dda_setup1_plan_start_same_x));
+        ahead = ((!card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_y) && (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_x || card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x));
     end
-    ahead = (ahead && (!(card_core0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_arc1_dda_setup1_plan_start_same_y)) && (card_core0_dda_arc1_dda_setup1_dda_latch1_turn == 0));
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= {1'b0, card_core0_dda_arc1_dda_setup1_dda_latch1_turn};
-    if (((card_core0_dda_arc1_dda_setup1_dda_latch1_turn == 0) && (!ahead))) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= 4;
+    ahead = (ahead && (!(card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x && card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_y)) && (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_turn == 0));
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ahead <= ahead;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= {1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_turn};
+    if (((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_turn == 0) && (!ahead))) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings <= 4;
     end
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward <= (card_core0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
-    card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end <= (card_core0_dda_arc1_dda_setup1_dda_latch1_end_odd != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
-    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye);
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant <= card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_start_quadrant;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward <= (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_start_quadrant[0] != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end <= (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_end_odd != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw);
+    if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye);
     end
     else begin
-        card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xs && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ys) || (card_core0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_arc1_dda_setup1_dda_latch1_zero_ye));
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_centre <= ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xs && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ys) || (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_xe && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_zero_ye));
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_root1_radicand, card_core0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_arc1_dda_setup1_root_root) begin: card_core0_dda_arc1_dda_setup1_dda_root1_trial
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_radicand, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_axes0_dda_arc1_dda_setup1_root_root) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_trial
     reg [28-1:0] value;
     reg [27-1:0] difference;
     value = 28'h0;
     difference = 27'h0;
-    value = {card_core0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_arc1_dda_setup1_dda_root1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card_core0_dda_arc1_dda_setup1_root_root[24-1:0], 2'h1});
-    card_core0_dda_arc1_dda_setup1_dda_root1_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
-    card_core0_dda_arc1_dda_setup1_dda_root1_keep = value[(24 + 2)-1:0];
+    value = {card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_remainder, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_root_root[24-1:0], 2'h1});
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_keep = value[(24 + 2)-1:0];
     if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
-        card_core0_dda_arc1_dda_setup1_dda_root1_keep = difference[(24 + 2)-1:0];
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_keep = difference[(24 + 2)-1:0];
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_root1_steps, card_core0_dda_arc1_dda_setup1_dda_root1_all_ones, card_core0_dda_arc1_dda_setup1_dda_root1_fits, card_core0_dda_arc1_dda_setup1_dda_root1_started) begin: card_core0_dda_arc1_dda_setup1_dda_root1_length
-    card_core0_dda_arc1_dda_setup1_root_grows = 1'b0;
-    if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps > 1)) begin
-        card_core0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_arc1_dda_setup1_dda_root1_started || card_core0_dda_arc1_dda_setup1_dda_root1_fits);
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_all_ones, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_length
+    card_core0_dda_axes0_dda_arc1_dda_setup1_root_grows = 1'b0;
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps > 1)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started || card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits);
     end
-    else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps == 1)) begin
-        card_core0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_arc1_dda_setup1_dda_root1_fits && card_core0_dda_arc1_dda_setup1_dda_root1_started && card_core0_dda_arc1_dda_setup1_dda_root1_all_ones);
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps == 1)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_root_grows = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_all_ones);
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_root1_count
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_count
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_dda_root1_steps <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps <= 0;
     end
     else begin
-        if (card_core0_dda_arc1_dda_setup1_root_load) begin
-            card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (24 + 1);
+        if (card_core0_dda_axes0_dda_arc1_dda_setup1_root_load) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps <= (24 + 1);
         end
-        else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
-            card_core0_dda_arc1_dda_setup1_dda_root1_steps <= (card_core0_dda_arc1_dda_setup1_dda_root1_steps - 1);
-        end
-    end
-end
-
-
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_dda_root1_digits
-    if (card_core0_dda_arc1_dda_setup1_root_load) begin
-        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= card_core0_dda_arc1_dda_setup1_root_radicand;
-        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
-        card_core0_dda_arc1_dda_setup1_root_root <= 0;
-        card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b0;
-        card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b1;
-    end
-    else if ((card_core0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
-        card_core0_dda_arc1_dda_setup1_dda_root1_remainder <= card_core0_dda_arc1_dda_setup1_dda_root1_keep;
-        card_core0_dda_arc1_dda_setup1_root_root <= {card_core0_dda_arc1_dda_setup1_root_root[24-1:0], card_core0_dda_arc1_dda_setup1_dda_root1_fits};
-        card_core0_dda_arc1_dda_setup1_dda_root1_radicand <= (card_core0_dda_arc1_dda_setup1_dda_root1_radicand << 2);
-        if (card_core0_dda_arc1_dda_setup1_dda_root1_fits) begin
-            card_core0_dda_arc1_dda_setup1_dda_root1_started <= 1'b1;
-        end
-        else if (card_core0_dda_arc1_dda_setup1_dda_root1_started) begin
-            card_core0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b0;
+        else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps <= (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps - 1);
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken, card_core0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_sequence1_advance
-    card_core0_dda_arc1_dda_setup1_next_state = card_core0_dda_arc1_dda_setup1_state;
-    card_core0_dda_arc1_dda_setup1_next_step = 0;
-    card_core0_dda_arc1_dda_setup1_next_square = card_core0_dda_arc1_dda_setup1_square;
-    if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
-        card_core0_dda_arc1_dda_setup1_next_square = 0;
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_digits
+    if (card_core0_dda_axes0_dda_arc1_dda_setup1_root_load) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_radicand <= card_core0_dda_axes0_dda_arc1_dda_setup1_root_radicand;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_remainder <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_root_root <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started <= 1'b0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b1;
+    end
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_steps != 0)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_remainder <= card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_keep;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_root_root <= {card_core0_dda_axes0_dda_arc1_dda_setup1_root_root[24-1:0], card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits};
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_radicand <= (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_radicand << 2);
+        if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_fits) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started <= 1'b1;
+        end
+        else if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_started) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_dda_root1_all_ones <= 1'b0;
+        end
+    end
+end
+
+
+always @(card_core0_regs_fifo1_sequencer1_dda_start, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_sequence1_plan_taken, card_core0_dda_axes0_dda_arc1_dda_setup1_step, card_core0_regs_fifo1_sequencer1_dda_line, card_core0_dda_axes0_dda_arc1_dda_setup1_square, card_core0_dda_axes0_dda_arc1_dda_setup1_state) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_sequence1_advance
+    card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = card_core0_dda_axes0_dda_arc1_dda_setup1_state;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_next_step = 0;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_next_square = card_core0_dda_axes0_dda_arc1_dda_setup1_square;
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b000)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_next_square = 0;
         if (card_core0_regs_fifo1_sequencer1_dda_start) begin
-            card_core0_dda_arc1_dda_setup1_next_state = 3'b010;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b010;
             if (card_core0_regs_fifo1_sequencer1_dda_line) begin
-                card_core0_dda_arc1_dda_setup1_next_state = 3'b001;
+                card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b001;
             end
         end
     end
-    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
-        card_core0_dda_arc1_dda_setup1_next_state = 3'b110;
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b001)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b110;
     end
-    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b010)) begin
-        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (7 - 1))) begin
-            card_core0_dda_arc1_dda_setup1_next_state = 3'b011;
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b010)) begin
+        if (($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (7 - 1))) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b011;
         end
         else begin
-            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_step = (card_core0_dda_axes0_dda_arc1_dda_setup1_step + 1);
         end
     end
-    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b011)) begin
-        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
-            card_core0_dda_arc1_dda_setup1_next_square = (card_core0_dda_arc1_dda_setup1_square + 1);
-            if ((card_core0_dda_arc1_dda_setup1_square == 3)) begin
-                card_core0_dda_arc1_dda_setup1_next_state = 3'b100;
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b011)) begin
+        if (($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_square = (card_core0_dda_axes0_dda_arc1_dda_setup1_square + 1);
+            if ((card_core0_dda_axes0_dda_arc1_dda_setup1_square == 3)) begin
+                card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b100;
             end
         end
         else begin
-            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_step = (card_core0_dda_axes0_dda_arc1_dda_setup1_step + 1);
         end
     end
-    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b100)) begin
-        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (5 - 1))) begin
-            card_core0_dda_arc1_dda_setup1_next_state = 3'b101;
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b100)) begin
+        if (($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (5 - 1))) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b101;
         end
         else begin
-            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_step = (card_core0_dda_axes0_dda_arc1_dda_setup1_step + 1);
         end
     end
-    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b101)) begin
-        if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (13 - 1))) begin
-            card_core0_dda_arc1_dda_setup1_next_state = 3'b110;
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b101)) begin
+        if (($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (13 - 1))) begin
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b110;
         end
         else begin
-            card_core0_dda_arc1_dda_setup1_next_step = (card_core0_dda_arc1_dda_setup1_step + 1);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_next_step = (card_core0_dda_axes0_dda_arc1_dda_setup1_step + 1);
         end
     end
-    else if (card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken) begin
-        card_core0_dda_arc1_dda_setup1_next_state = 3'b000;
+    else if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_sequence1_plan_taken) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_next_state = 3'b000;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_multiplier, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_operations
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_step, card_core0_dda_axes0_dda_arc1_dda_setup1_multiplier, card_core0_dda_axes0_dda_arc1_dda_setup1_state) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_operations
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
     g_op = 2'h0;
     o_op = 2'h0;
     g_op = 0;
     o_op = 2;
-    case (card_core0_dda_arc1_dda_setup1_state)
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_state)
         3'b010: begin
-            if ((card_core0_dda_arc1_dda_setup1_step == 4)) begin
+            if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4)) begin
                 g_op = 2;
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
+            else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 6)) begin
                 g_op = 3;
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step != 0)) begin
+            else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step != 0)) begin
                 g_op = 1;
             end
         end
         3'b011: begin
             o_op = 1;
-            if (card_core0_dda_arc1_dda_setup1_multiplier[0]) begin
+            if (card_core0_dda_axes0_dda_arc1_dda_setup1_multiplier[0]) begin
                 g_op = 1;
             end
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+            if (($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
                 o_op = 2;
             end
         end
         3'b100: begin
             o_op = 1;
-            case (card_core0_dda_arc1_dda_setup1_step)
+            case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
@@ -6670,7 +6950,7 @@ always @(card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_mul
         end
         3'b101: begin
             g_op = 1;
-            case (card_core0_dda_arc1_dda_setup1_step)
+            case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
                 'h1: begin
                     g_op = 0;
                     o_op = 1;
@@ -6691,65 +6971,65 @@ always @(card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_mul
             o_op = 0;
         end
     endcase
-    card_core0_dda_arc1_dda_setup1_gap_op = g_op;
-    card_core0_dda_arc1_dda_setup1_operand_op = o_op;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_gap_op = g_op;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_operand_op = o_op;
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice, card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_operand_source
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice, card_core0_dda_axes0_dda_arc1_dda_setup1_step, card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x, card_core0_dda_axes0_dda_arc1_dda_setup1_square, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y, card_core0_dda_axes0_dda_arc1_dda_setup1_state) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_operand_source
     reg [3-1:0] src;
     reg on;
     src = 3'h0;
     on = 1'b1;
     src = 0;
-    case (card_core0_dda_arc1_dda_setup1_state)
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_state)
         3'b010: begin
-            if (((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 4))) begin
+            if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4))) begin
                 src = 1;
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 3)) begin
+            else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 3)) begin
                 src = 2;
             end
-            else if (((card_core0_dda_arc1_dda_setup1_step != 0) && (card_core0_dda_arc1_dda_setup1_step != 6))) begin
+            else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step != 0) && (card_core0_dda_axes0_dda_arc1_dda_setup1_step != 6))) begin
                 src = 3;
             end
         end
         3'b011: begin
-            if ((($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1)) && (card_core0_dda_arc1_dda_setup1_square != 3))) begin
-                src = (card_core0_dda_arc1_dda_setup1_square + 1);
+            if ((($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (24 - 1)) && (card_core0_dda_axes0_dda_arc1_dda_setup1_square != 3))) begin
+                src = (card_core0_dda_axes0_dda_arc1_dda_setup1_square + 1);
             end
-            else if ((($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1)) && card_core0_dda_arc1_dda_setup1_m_is_y)) begin
+            else if ((($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (24 - 1)) && card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y)) begin
                 src = 1;
             end
         end
         3'b100: begin
-            if (((card_core0_dda_arc1_dda_setup1_step == 1) && card_core0_dda_arc1_dda_setup1_m_is_y)) begin
+            if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 1) && card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y)) begin
                 src = 1;
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 4)) begin
+            else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4)) begin
                 src = 4;
             end
         end
         3'b101: begin
-            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 5) || ((card_core0_dda_arc1_dda_setup1_step == 9) && (!card_core0_dda_arc1_dda_setup1_pick_x)))) begin
+            if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 5) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 9) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x)))) begin
                 src = 3;
             end
-            if ((((card_core0_dda_arc1_dda_setup1_step == 0) && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end) || (card_core0_dda_arc1_dda_setup1_step == 4) || ((card_core0_dda_arc1_dda_setup1_step == 9) && card_core0_dda_arc1_dda_setup1_pick_x))) begin
+            if ((((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 0) && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 9) && card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x))) begin
                 src = 2;
             end
-            if (((card_core0_dda_arc1_dda_setup1_step == 3) || ((card_core0_dda_arc1_dda_setup1_step == 8) && (!card_core0_dda_arc1_dda_setup1_pick_x)))) begin
+            if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 3) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 8) && (!card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x)))) begin
                 src = 1;
             end
-            if (((card_core0_dda_arc1_dda_setup1_step == 6) || (card_core0_dda_arc1_dda_setup1_step >= 10))) begin
+            if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 6) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step >= 10))) begin
                 src = 4;
             end
-            if ((card_core0_dda_arc1_dda_setup1_step == 6)) begin
-                on = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
+            if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 6)) begin
+                on = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step >= 10)) begin
-                on = (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice != 0);
-                if ((card_core0_dda_arc1_dda_setup1_step == 11)) begin
-                    on = (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice == 2);
+            else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step >= 10)) begin
+                on = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice != 0);
+                if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 11)) begin
+                    on = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice == 2);
                 end
             end
         end
@@ -6757,413 +7037,413 @@ always @(card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice, card_core0_dda
             src = 0;
         end
     endcase
-    card_core0_dda_arc1_dda_setup1_source = src;
-    card_core0_dda_arc1_dda_setup1_source_on = on;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_source = src;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_source_on = on;
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_step, card_core0_dda_arc1_dda_setup1_pick_x, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_square, card_core0_dda_arc1_dda_setup1_state) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_inversion
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_step, card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_axes0_dda_arc1_dda_setup1_square, card_core0_dda_axes0_dda_arc1_dda_setup1_state) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_inversion
     reg inv;
     inv = 1'b0;
-    case (card_core0_dda_arc1_dda_setup1_state)
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_state)
         3'b010: begin
-            inv = ((card_core0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_arc1_dda_setup1_step == 5) || (card_core0_dda_arc1_dda_setup1_step == 6));
+            inv = ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 1) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 3) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 5) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 6));
         end
         3'b011: begin
-            inv = (card_core0_dda_arc1_dda_setup1_square < 2);
-            if (($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
-                inv = ((card_core0_dda_arc1_dda_setup1_square == 0) || (card_core0_dda_arc1_dda_setup1_square == 3));
+            inv = (card_core0_dda_axes0_dda_arc1_dda_setup1_square < 2);
+            if (($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) == (24 - 1))) begin
+                inv = ((card_core0_dda_axes0_dda_arc1_dda_setup1_square == 0) || (card_core0_dda_axes0_dda_arc1_dda_setup1_square == 3));
             end
         end
         3'b100: begin
-            inv = (card_core0_dda_arc1_dda_setup1_step == 0);
+            inv = (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 0);
         end
         3'b101: begin
-            if (((card_core0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_arc1_dda_setup1_step == 1))) begin
+            if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 0) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 1))) begin
                 inv = 1'b1;
             end
-            else if (((card_core0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_arc1_dda_setup1_step == 3) || ((card_core0_dda_arc1_dda_setup1_step == 8) && card_core0_dda_arc1_dda_setup1_pick_x))) begin
-                inv = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
+            else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 2) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 3) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 8) && card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x))) begin
+                inv = (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
             end
-            else if (((card_core0_dda_arc1_dda_setup1_step == 4) || (card_core0_dda_arc1_dda_setup1_step == 5) || ((card_core0_dda_arc1_dda_setup1_step == 9) && card_core0_dda_arc1_dda_setup1_pick_x))) begin
-                inv = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == 1);
+            else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 5) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 9) && card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x))) begin
+                inv = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == 1);
             end
-            else if (((card_core0_dda_arc1_dda_setup1_step == 6) || (card_core0_dda_arc1_dda_setup1_step == 8))) begin
-                inv = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward == 1);
+            else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 6) || (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 8))) begin
+                inv = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward == 1);
             end
-            else if ((card_core0_dda_arc1_dda_setup1_step == 9)) begin
-                inv = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
+            else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 9)) begin
+                inv = (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
             end
         end
         default: begin
             inv = 1'b0;
         end
     endcase
-    card_core0_dda_arc1_dda_setup1_invert = inv;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_invert = inv;
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_carry_in
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_carry_in
     reg cin;
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_carry <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_carry <= 0;
     end
     else begin
         cin = 1'b0;
-        case (card_core0_dda_arc1_dda_setup1_next_state)
+        case (card_core0_dda_axes0_dda_arc1_dda_setup1_next_state)
             3'b010: begin
-                cin = ((card_core0_dda_arc1_dda_setup1_next_step == 2) || (card_core0_dda_arc1_dda_setup1_next_step == 4) || (card_core0_dda_arc1_dda_setup1_next_step == 6));
+                cin = ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 2) || (card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 4) || (card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 6));
             end
             3'b011: begin
-                cin = (card_core0_dda_arc1_dda_setup1_next_square < 2);
+                cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_next_square < 2);
             end
             3'b100: begin
-                cin = (card_core0_dda_arc1_dda_setup1_next_step == 4);
+                cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 4);
             end
             3'b101: begin
-                if ((card_core0_dda_arc1_dda_setup1_next_step == 0)) begin
+                if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 0)) begin
                     cin = 1'b1;
                 end
-                else if ((card_core0_dda_arc1_dda_setup1_next_step == 2)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] == 1);
+                else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 2)) begin
+                    cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_root_root[0] == 1);
                 end
-                else if (((card_core0_dda_arc1_dda_setup1_next_step == 3) || (card_core0_dda_arc1_dda_setup1_next_step == 4))) begin
-                    cin = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
+                else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 3) || (card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 4))) begin
+                    cin = (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
                 end
-                else if (((card_core0_dda_arc1_dda_setup1_next_step == 5) || (card_core0_dda_arc1_dda_setup1_next_step == 6))) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == 1);
+                else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 5) || (card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 6))) begin
+                    cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == 1);
                 end
-                else if ((card_core0_dda_arc1_dda_setup1_next_step == 7)) begin
-                    cin = ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end) && (card_core0_dda_arc1_dda_setup1_root_root[0] != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward));
+                else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 7)) begin
+                    cin = ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end) && (card_core0_dda_axes0_dda_arc1_dda_setup1_root_root[0] != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward));
                 end
-                else if ((card_core0_dda_arc1_dda_setup1_next_step == 9)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_pick_x != card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
+                else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 9)) begin
+                    cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x != card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward);
                 end
-                else if ((card_core0_dda_arc1_dda_setup1_next_step == 10)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_pick_x == card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
+                else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 10)) begin
+                    cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x == card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end);
                 end
-                else if ((card_core0_dda_arc1_dda_setup1_next_step == 11)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice != 0));
+                else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 11)) begin
+                    cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice != 0));
                 end
-                else if ((card_core0_dda_arc1_dda_setup1_next_step == 12)) begin
-                    cin = (card_core0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice == 2));
+                else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_next_step == 12)) begin
+                    cin = (card_core0_dda_axes0_dda_arc1_dda_setup1_root_root[0] && (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice == 2));
                 end
             end
             default: begin
                 cin = 1'b0;
             end
         endcase
-        card_core0_dda_arc1_dda_setup1_carry <= cin;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_carry <= cin;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_arc1_dda_setup1_pick_x) begin: card_core0_dda_arc1_dda_setup1_dda_setup_control1_rq_terms
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end, card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_rq_terms
     reg [3-1:0] count;
     count = 3'h0;
-    count = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings - 1);
-    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_arc1_dda_setup1_pick_x)) begin
+    count = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings - 1);
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward != card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x)) begin
         count = (count + 1);
     end
-    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == card_core0_dda_arc1_dda_setup1_pick_x)) begin
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward_end == card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x)) begin
         count = (count + 1);
     end
-    card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice = count[3-1:1];
-    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings == 0)) begin
-        card_core0_dda_arc1_dda_setup1_dda_setup_control1_twice = 0;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice = count[3-1:1];
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings == 0)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_dda_setup_control1_twice = 0;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_source, card_core0_dda_arc1_dda_setup1_root_root, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_mag_ye, card_core0_dda_arc1_dda_setup1_source_on) begin: card_core0_dda_arc1_dda_setup1_select_source
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_axes0_dda_arc1_dda_setup1_source, card_core0_dda_axes0_dda_arc1_dda_setup1_root_root, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye, card_core0_dda_axes0_dda_arc1_dda_setup1_source_on) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_select_source
     reg [25-1:0] value;
     value = 25'h0;
-    case (card_core0_dda_arc1_dda_setup1_source)
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_source)
         'h0: begin
-            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
+            value = {1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs};
         end
         'h1: begin
-            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+            value = {1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys};
         end
         'h2: begin
-            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_xe};
+            value = {1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe};
         end
         'h3: begin
-            value = {1'b0, card_core0_dda_arc1_dda_setup1_plan_mag_ye};
+            value = {1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye};
         end
         default: begin
-            value = card_core0_dda_arc1_dda_setup1_root_root;
+            value = card_core0_dda_axes0_dda_arc1_dda_setup1_root_root;
         end
     endcase
-    if ((!card_core0_dda_arc1_dda_setup1_source_on)) begin
+    if ((!card_core0_dda_axes0_dda_arc1_dda_setup1_source_on)) begin
         value = 0;
     end
-    card_core0_dda_arc1_dda_setup1_source_value = value;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_source_value = value;
 end
 
 
 
-assign card_core0_dda_arc1_dda_setup1_total = ((card_core0_dda_arc1_dda_setup1_gap + card_core0_dda_arc1_dda_setup1_operand) + {48'h0, card_core0_dda_arc1_dda_setup1_carry});
-assign card_core0_dda_arc1_dda_setup1_root_radicand = (~card_core0_dda_arc1_dda_setup1_gap[(2 * 24)-1:0]);
-assign card_core0_dda_arc1_dda_setup1_root_load = ((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_square == 2) && (card_core0_dda_arc1_dda_setup1_step == 0));
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_total = ((card_core0_dda_axes0_dda_arc1_dda_setup1_gap + card_core0_dda_axes0_dda_arc1_dda_setup1_operand) + {48'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_carry});
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_root_radicand = (~card_core0_dda_axes0_dda_arc1_dda_setup1_gap[(2 * 24)-1:0]);
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_root_load = ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_axes0_dda_arc1_dda_setup1_square == 2) && (card_core0_dda_axes0_dda_arc1_dda_setup1_step == 0));
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_datapath
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_datapath
     reg [49-1:0] loaded;
     loaded = 49'h0;
-    case (card_core0_dda_arc1_dda_setup1_gap_op)
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_gap_op)
         'h1: begin
-            card_core0_dda_arc1_dda_setup1_gap <= card_core0_dda_arc1_dda_setup1_total;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_gap <= card_core0_dda_axes0_dda_arc1_dda_setup1_total;
         end
         'h2: begin
-            card_core0_dda_arc1_dda_setup1_gap <= 0;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_gap <= 0;
         end
         'h3: begin
-            card_core0_dda_arc1_dda_setup1_gap <= ((1 << 49) - 1);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_gap <= ((1 << 49) - 1);
         end
     endcase
-    case (card_core0_dda_arc1_dda_setup1_operand_op)
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_operand_op)
         'h1: begin
-            card_core0_dda_arc1_dda_setup1_operand <= {card_core0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], card_core0_dda_arc1_dda_setup1_invert};
+            card_core0_dda_axes0_dda_arc1_dda_setup1_operand <= {card_core0_dda_axes0_dda_arc1_dda_setup1_operand[(49 - 1)-1:0], card_core0_dda_axes0_dda_arc1_dda_setup1_invert};
         end
         'h2: begin
-            loaded = {24'h0, card_core0_dda_arc1_dda_setup1_source_value};
-            if ((card_core0_dda_arc1_dda_setup1_invert && card_core0_dda_arc1_dda_setup1_source_on)) begin
+            loaded = {24'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_source_value};
+            if ((card_core0_dda_axes0_dda_arc1_dda_setup1_invert && card_core0_dda_axes0_dda_arc1_dda_setup1_source_on)) begin
                 loaded = (~loaded);
             end
-            card_core0_dda_arc1_dda_setup1_operand <= loaded;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_operand <= loaded;
         end
     endcase
-    if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && ($signed({1'b0, card_core0_dda_arc1_dda_setup1_step}) != (24 - 1)))) begin
-        card_core0_dda_arc1_dda_setup1_multiplier <= (card_core0_dda_arc1_dda_setup1_multiplier >>> 1);
+    if (((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b011) && ($signed({1'b0, card_core0_dda_axes0_dda_arc1_dda_setup1_step}) != (24 - 1)))) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_multiplier <= (card_core0_dda_axes0_dda_arc1_dda_setup1_multiplier >>> 1);
     end
-    else if (((card_core0_dda_arc1_dda_setup1_state == 3'b010) || (card_core0_dda_arc1_dda_setup1_state == 3'b011))) begin
-        card_core0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_arc1_dda_setup1_source_value[24-1:0];
+    else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b010) || (card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b011))) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_multiplier <= card_core0_dda_axes0_dda_arc1_dda_setup1_source_value[24-1:0];
     end
-    if ((card_core0_dda_arc1_dda_setup1_state == 3'b000)) begin
-        card_core0_dda_arc1_dda_setup1_gap <= 0;
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b000)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_gap <= 0;
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_setup1_sequencer
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_sequencer
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_setup1_step <= 0;
-        card_core0_dda_arc1_dda_setup1_square <= 0;
-        card_core0_dda_arc1_dda_setup1_state <= 3'b000;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_step <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_square <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_state <= 3'b000;
     end
     else begin
-        card_core0_dda_arc1_dda_setup1_state <= card_core0_dda_arc1_dda_setup1_next_state;
-        card_core0_dda_arc1_dda_setup1_step <= card_core0_dda_arc1_dda_setup1_next_step;
-        card_core0_dda_arc1_dda_setup1_square <= card_core0_dda_arc1_dda_setup1_next_square;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_state <= card_core0_dda_axes0_dda_arc1_dda_setup1_next_state;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_step <= card_core0_dda_axes0_dda_arc1_dda_setup1_next_step;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_square <= card_core0_dda_axes0_dda_arc1_dda_setup1_next_square;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_arc1_dda_setup1_line_major
-    card_core0_dda_arc1_dda_setup1_major = {4'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ye};
-    if ((card_core0_dda_arc1_dda_setup1_plan_mag_xe >= card_core0_dda_arc1_dda_setup1_plan_mag_ye)) begin
-        card_core0_dda_arc1_dda_setup1_major = {4'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xe};
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_line_major
+    card_core0_dda_axes0_dda_arc1_dda_setup1_major = {4'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye};
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe >= card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_major = {4'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe};
     end
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_threshold
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_threshold
     reg shift;
     shift = 1'b0;
-    card_core0_dda_arc1_dda_setup1_grew <= card_core0_dda_arc1_dda_setup1_root_grows;
-    if (((card_core0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
-        card_core0_dda_arc1_dda_setup1_plan_threshold <= 0;
-        card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b0;
-        card_core0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
+    card_core0_dda_axes0_dda_arc1_dda_setup1_grew <= card_core0_dda_axes0_dda_arc1_dda_setup1_root_grows;
+    if (((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b000) && card_core0_regs_fifo1_sequencer1_dda_start)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_too_wide <= 1'b0;
+        card_core0_dda_axes0_dda_arc1_dda_setup1_acc_bits <= card_core0_regs_fifo1_sequencer1_dda_acc_bits;
         if ((card_core0_regs_fifo1_sequencer1_dda_acc_bits != 0)) begin
-            card_core0_dda_arc1_dda_setup1_ones_left <= ({1'b0, card_core0_regs_fifo1_sequencer1_dda_acc_bits} + {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift});
+            card_core0_dda_axes0_dda_arc1_dda_setup1_ones_left <= ({1'b0, card_core0_regs_fifo1_sequencer1_dda_acc_bits} + {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift});
         end
         else begin
-            card_core0_dda_arc1_dda_setup1_ones_left <= {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift};
+            card_core0_dda_axes0_dda_arc1_dda_setup1_ones_left <= {1'b0, card_core0_regs_fifo1_sequencer1_dda_lambda_shift};
         end
     end
-    else if ((card_core0_dda_arc1_dda_setup1_state == 3'b001)) begin
-        card_core0_dda_arc1_dda_setup1_plan_threshold <= card_core0_dda_arc1_dda_setup1_major[28-1:0];
+    else if ((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b001)) begin
+        card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold <= card_core0_dda_axes0_dda_arc1_dda_setup1_major[28-1:0];
     end
     else if (1'b1) begin
-        if (((card_core0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_arc1_dda_setup1_ones_left != 0))) begin
+        if (((card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b011) && (card_core0_dda_axes0_dda_arc1_dda_setup1_ones_left != 0))) begin
             shift = 1'b1;
-            card_core0_dda_arc1_dda_setup1_ones_left <= (card_core0_dda_arc1_dda_setup1_ones_left - 1);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_ones_left <= (card_core0_dda_axes0_dda_arc1_dda_setup1_ones_left - 1);
         end
-        else if (((card_core0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_arc1_dda_setup1_grew)) begin
+        else if (((card_core0_dda_axes0_dda_arc1_dda_setup1_acc_bits == 0) && card_core0_dda_axes0_dda_arc1_dda_setup1_grew)) begin
             shift = 1'b1;
         end
         if (shift) begin
-            card_core0_dda_arc1_dda_setup1_plan_threshold <= {card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)-1:0], 1'b1};
-            if (card_core0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)]) begin
-                card_core0_dda_arc1_dda_setup1_plan_too_wide <= 1'b1;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold <= {card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold[(28 - 1)]) begin
+                card_core0_dda_axes0_dda_arc1_dda_setup1_plan_too_wide <= 1'b1;
             end
         end
     end
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_setup1_captures
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_captures
     reg sign;
-    sign = card_core0_dda_arc1_dda_setup1_total[(49 - 1)];
-    case (card_core0_dda_arc1_dda_setup1_state)
+    sign = card_core0_dda_axes0_dda_arc1_dda_setup1_total[(49 - 1)];
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_state)
         3'b000: begin
-            card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
         end
         3'b010: begin
-            case (card_core0_dda_arc1_dda_setup1_step)
+            case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
                 'h2: begin
-                    card_core0_dda_arc1_dda_setup1_m_is_y <= sign;
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y <= sign;
                 end
                 'h4: begin
-                    card_core0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
-                    card_core0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_axes0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
                 end
                 'h6: begin
-                    card_core0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
-                    card_core0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_axes0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
                 end
             endcase
         end
         3'b100: begin
-            if ((((card_core0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_arc1_dda_setup1_step == 4) && sign))) begin
-                card_core0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
+            if ((((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4) && sign))) begin
+                card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
             end
         end
         3'b101: begin
-            case (card_core0_dda_arc1_dda_setup1_step)
+            case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
                 'h0: begin
-                    card_core0_dda_arc1_dda_setup1_plan_radius <= card_core0_dda_arc1_dda_setup1_total[(24 + 2)-1:1];
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius <= card_core0_dda_axes0_dda_arc1_dda_setup1_total[(24 + 2)-1:1];
                 end
                 'h2: begin
-                    card_core0_dda_arc1_dda_setup1_plan_beyond <= sign;
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_beyond <= sign;
                 end
                 'h7: begin
-                    card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_total[27-1:0]);
-                    card_core0_dda_arc1_dda_setup1_pick_x <= (!card_core0_dda_arc1_dda_setup1_total[(27 - 1)]);
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_axes0_dda_arc1_dda_setup1_total[27-1:0]);
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_pick_x <= (!card_core0_dda_axes0_dda_arc1_dda_setup1_total[(27 - 1)]);
                 end
                 'hc: begin
-                    card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_total[27-1:0];
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_axes0_dda_arc1_dda_setup1_total[27-1:0];
                 end
             endcase
         end
         3'b001: begin
-            card_core0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_arc1_dda_setup1_major[27-1:0]);
-            card_core0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_arc1_dda_setup1_major[27-1:0];
+            card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_diff <= $signed(card_core0_dda_axes0_dda_arc1_dda_setup1_major[27-1:0]);
+            card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_max <= card_core0_dda_axes0_dda_arc1_dda_setup1_major[27-1:0];
         end
         default: begin
-            card_core0_dda_arc1_dda_setup1_m_is_y <= card_core0_dda_arc1_dda_setup1_m_is_y;
+            card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y <= card_core0_dda_axes0_dda_arc1_dda_setup1_m_is_y;
         end
     endcase
 end
 
 
 
-assign card_core0_regs_fifo1_sequencer1_dda_ready = (card_core0_dda_arc1_dda_setup1_state == 3'b000);
-assign card_core0_dda_arc1_dda_setup1_plan_done = (card_core0_dda_arc1_dda_setup1_state == 3'b110);
+assign card_core0_regs_fifo1_sequencer1_dda_ready = (card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b000);
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_plan_done = (card_core0_dda_axes0_dda_arc1_dda_setup1_state == 3'b110);
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_lookup_variant
-    case (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant)
-        0: card_core0_dda_arc1_dda_check1_variant_built = 0;
-        1: card_core0_dda_arc1_dda_check1_variant_built = 0;
-        2: card_core0_dda_arc1_dda_check1_variant_built = 1;
-        default: card_core0_dda_arc1_dda_check1_variant_built = 1;
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_axes0_dda_arc1_dda_check1_lookup_variant
+    case (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant)
+        0: card_core0_dda_axes0_dda_arc1_dda_check1_variant_built = 0;
+        1: card_core0_dda_axes0_dda_arc1_dda_check1_variant_built = 0;
+        2: card_core0_dda_axes0_dda_arc1_dda_check1_variant_built = 1;
+        default: card_core0_dda_axes0_dda_arc1_dda_check1_variant_built = 1;
     endcase
 end
 
 
 
-assign card_core0_dda_arc1_dda_check1_move_offer = card_core0_dda_arc1_dda_setup1_plan_done;
-assign card_core0_dda_arc1_dda_setup1_dda_sequence1_plan_taken = card_core0_dda_arc1_dda_check1_move_take;
+assign card_core0_dda_axes0_dda_arc1_dda_check1_move_offer = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_done;
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_dda_sequence1_plan_taken = card_core0_dda_axes0_dda_arc1_dda_check1_move_take;
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_arc1_dda_check1_variant_built, card_core0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre, card_core0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_validate
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ahead, card_core0_dda_axes0_dda_arc1_dda_check1_variant_built, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_beyond, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_too_wide, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_centre, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_axes0_dda_arc1_dda_check1_validate
     reg bad;
-    bad = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre || card_core0_dda_arc1_dda_setup1_plan_off_circle || (card_core0_dda_arc1_dda_setup1_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
-    if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ahead) && card_core0_dda_arc1_dda_setup1_plan_beyond)) begin
+    bad = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_centre || card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle || (card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ahead) && card_core0_dda_axes0_dda_arc1_dda_setup1_plan_beyond)) begin
         bad = 1'b1;
     end
-    if (((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant != 3) && card_core0_dda_arc1_dda_setup1_plan_too_wide)) begin
+    if (((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant != 3) && card_core0_dda_axes0_dda_arc1_dda_setup1_plan_too_wide)) begin
         bad = 1'b1;
     end
-    if ((!card_core0_dda_arc1_dda_check1_variant_built)) begin
+    if ((!card_core0_dda_axes0_dda_arc1_dda_check1_variant_built)) begin
         bad = 1'b1;
     end
-    card_core0_dda_arc1_dda_check1_move_error = (bad && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line));
-    card_core0_dda_arc1_dda_check1_move_zero = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line && card_core0_dda_arc1_dda_setup1_dda_latch1_plan_centre);
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_error = (bad && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line));
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_zero = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line && card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_centre);
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_geometry
-    card_core0_dda_arc1_dda_check1_move_line = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line;
-    card_core0_dda_arc1_dda_check1_move_variant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
-    card_core0_dda_arc1_dda_check1_move_ccw = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
-    card_core0_dda_arc1_dda_check1_move_blend = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
-    card_core0_dda_arc1_dda_check1_move_right = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe);
-    card_core0_dda_arc1_dda_check1_move_up = (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye);
-    card_core0_dda_arc1_dda_check1_move_x_inward = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward;
-    card_core0_dda_arc1_dda_check1_move_quadrant = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
-    card_core0_dda_arc1_dda_check1_move_crossings = card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings;
-    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
-        card_core0_dda_arc1_dda_check1_move_quadrant = 0;
-        card_core0_dda_arc1_dda_check1_move_crossings = 0;
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_blend, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_axes0_dda_arc1_dda_check1_geometry
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_line = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_variant = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_ccw = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_ccw;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_blend = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_blend;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_right = (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_xe);
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_up = (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_neg_ye);
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_x_inward = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_quadrant = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_quadrant;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_crossings = card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings;
+    if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_quadrant = 0;
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_crossings = 0;
     end
-    if ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_crossings == 0)) begin
-        card_core0_dda_arc1_dda_check1_move_target_x = 2;
-        card_core0_dda_arc1_dda_check1_move_target_y = 2;
+    if ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_crossings == 0)) begin
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_target_x = 2;
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_target_y = 2;
     end
-    else if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward) begin
-        card_core0_dda_arc1_dda_check1_move_target_x = 0;
-        card_core0_dda_arc1_dda_check1_move_target_y = 1;
+    else if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward) begin
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_target_x = 0;
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_target_y = 1;
     end
     else begin
-        card_core0_dda_arc1_dda_check1_move_target_x = 1;
-        card_core0_dda_arc1_dda_check1_move_target_y = 0;
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_target_x = 1;
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_target_y = 0;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_totals_max, card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_arc1_dda_setup1_plan_totals_diff, card_core0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_arc1_dda_check1_magnitudes
-    card_core0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_arc1_dda_setup1_plan_mag_xs;
-    card_core0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_arc1_dda_setup1_plan_mag_ys;
-    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
-        card_core0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_arc1_dda_setup1_plan_mag_ye;
-        card_core0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_arc1_dda_setup1_plan_mag_xe;
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_max, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_diff, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye) begin: card_core0_dda_axes0_dda_arc1_dda_check1_magnitudes
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys;
+    if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line) begin
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_x = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye;
+        card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_y = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe;
     end
-    card_core0_dda_arc1_dda_check1_move_end_x = card_core0_dda_arc1_dda_setup1_plan_mag_xe;
-    card_core0_dda_arc1_dda_check1_move_end_y = card_core0_dda_arc1_dda_setup1_plan_mag_ye;
-    card_core0_dda_arc1_dda_check1_move_radius = card_core0_dda_arc1_dda_setup1_plan_radius[24-1:0];
-    card_core0_dda_arc1_dda_check1_move_totals_diff = card_core0_dda_arc1_dda_setup1_plan_totals_diff;
-    card_core0_dda_arc1_dda_check1_move_totals_max = card_core0_dda_arc1_dda_setup1_plan_totals_max;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_end_x = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_end_y = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ye;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_radius = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius[24-1:0];
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_totals_diff = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_diff;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_totals_max = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_max;
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_arc1_dda_check1_thresholds
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant) begin: card_core0_dda_axes0_dda_arc1_dda_check1_thresholds
     reg [28-1:0] less;
     reg [30-1:0] below;
     reg [29-1:0] ones;
     less = 28'h0;
     below = 30'h0;
     ones = 29'h0;
-    less = card_core0_dda_arc1_dda_setup1_plan_threshold;
-    if (((!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((!1'b1) || (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 3)))) begin
+    less = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold;
+    if (((!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((!1'b1) || (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 3)))) begin
         less = 0;
-        less[24-1:0] = card_core0_dda_arc1_dda_setup1_plan_radius[24-1:0];
+        less[24-1:0] = card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius[24-1:0];
     end
-    card_core0_dda_arc1_dda_check1_move_threshold = less;
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_threshold = less;
     below = (~{3'h0, less[28-1:1]});
-    if ((1'b1 && (!card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 1) || (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 2)))) begin
+    if ((1'b1 && (!card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line) && ((card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 1) || (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_variant == 2)))) begin
         ones = ({less, 1'b1} & (~{1'b0, less}));
         below = (~{1'h0, ones});
     end
-    card_core0_dda_arc1_dda_check1_move_acc_init = $signed(below);
-    card_core0_dda_arc1_dda_check1_move_acc_carry = (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_line && (!less[0]));
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_init = $signed(below);
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_carry = (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_line && (!less[0]));
 end
 
 
-always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_arc1_dda_check1_precise_terms
+always @(card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys) begin: card_core0_dda_axes0_dda_arc1_dda_check1_precise_terms
     reg [27-1:0] inward;
     reg [27-1:0] outward;
     reg [27-1:0] bias_in;
@@ -7172,106 +7452,106 @@ always @(card_core0_dda_arc1_dda_setup1_plan_mag_xs, card_core0_dda_arc1_dda_set
     outward = 27'h0;
     bias_in = 27'h0;
     bias_out = 27'h0;
-    inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
-    outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
-    if (card_core0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward) begin
-        inward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_xs};
-        outward = {3'h0, card_core0_dda_arc1_dda_setup1_plan_mag_ys};
+    inward = {3'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys};
+    outward = {3'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs};
+    if (card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_plan_x_inward) begin
+        inward = {3'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs};
+        outward = {3'h0, card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys};
     end
     bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
     bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
-    card_core0_dda_arc1_dda_check1_move_bias_in = $signed(bias_in);
-    card_core0_dda_arc1_dda_check1_move_bias_out = $signed(bias_out);
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_bias_in = $signed(bias_in);
+    card_core0_dda_axes0_dda_arc1_dda_check1_move_bias_out = $signed(bias_out);
 end
 
 
 
-assign card_core0_regs_fifo1_feed_rate1_feed_stop_left = card_core0_dda_arc1_dda_run1_dda_left1_larger;
-assign card_core0_dda_arc1_dda_run1_step_last = (card_core0_dda_arc1_dda_run1_dda_left1_difference == 0);
+assign card_core0_regs_fifo1_feed_rate1_feed_stop_left = card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger;
+assign card_core0_dda_axes0_dda_arc1_dda_run1_step_last = (card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference == 0);
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_left1_follow
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_follow
     reg [27-1:0] base;
     reg [27-1:0] change;
     base = 27'h0;
     change = 27'h0;
-    base = card_core0_dda_arc1_dda_run1_dda_left1_difference;
-    if (card_core0_dda_arc1_dda_check1_move_take) begin
-        base = card_core0_dda_arc1_dda_check1_move_totals_diff;
-        if (card_core0_dda_arc1_dda_check1_move_line) begin
+    base = card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference;
+    if (card_core0_dda_axes0_dda_arc1_dda_check1_move_take) begin
+        base = card_core0_dda_axes0_dda_arc1_dda_check1_move_totals_diff;
+        if (card_core0_dda_axes0_dda_arc1_dda_check1_move_line) begin
             change = 27'h7ffffff;
         end
     end
-    else if (card_core0_dda_arc1_dda_run1_step_pending) begin
-        if ((card_core0_dda_arc1_dda_run1_step_line || (card_core0_dda_arc1_dda_run1_step_step_x && (!card_core0_dda_arc1_dda_run1_step_step_y)))) begin
+    else if (card_core0_dda_axes0_dda_arc1_dda_run1_step_pending) begin
+        if ((card_core0_dda_axes0_dda_arc1_dda_run1_step_line || (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y)))) begin
             change = 27'h7ffffff;
         end
-        else if ((card_core0_dda_arc1_dda_run1_step_step_y && (!card_core0_dda_arc1_dda_run1_step_step_x))) begin
+        else if ((card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x))) begin
             change = 1;
         end
     end
-    card_core0_dda_arc1_dda_run1_dda_left1_difference <= (base + change);
+    card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference <= (base + change);
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_dda_left1_count_down
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_count_down
     reg [27-1:0] base;
     reg [27-1:0] less;
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger <= 134217727;
     end
     else begin
         base = 27'h0;
         less = 27'h0;
-        base = card_core0_dda_arc1_dda_run1_dda_left1_larger;
-        if (card_core0_dda_arc1_dda_check1_move_take) begin
-            base = card_core0_dda_arc1_dda_check1_move_totals_max;
+        base = card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger;
+        if (card_core0_dda_axes0_dda_arc1_dda_check1_move_take) begin
+            base = card_core0_dda_axes0_dda_arc1_dda_check1_move_totals_max;
             less = 27'h7ffffff;
         end
-        else if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_blend))) begin
-            if (card_core0_dda_arc1_dda_run1_step_line) begin
+        else if ((card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_blend))) begin
+            if (card_core0_dda_axes0_dda_arc1_dda_run1_step_line) begin
                 less = 27'h7ffffff;
             end
-            else if ((card_core0_dda_arc1_dda_run1_dda_left1_difference == 0)) begin
-                if ((card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_step_step_y)) begin
+            else if ((card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference == 0)) begin
+                if ((card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x && card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y)) begin
                     less = 27'h7ffffff;
                 end
             end
-            else if (card_core0_dda_arc1_dda_run1_dda_left1_difference[(27 - 1)]) begin
-                if (card_core0_dda_arc1_dda_run1_step_step_y) begin
+            else if (card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference[(27 - 1)]) begin
+                if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y) begin
                     less = 27'h7ffffff;
                 end
             end
-            else if (card_core0_dda_arc1_dda_run1_step_step_x) begin
+            else if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin
                 less = 27'h7ffffff;
             end
         end
-        card_core0_dda_arc1_dda_run1_dda_left1_larger <= (base + less);
-        if (card_core0_dda_arc1_dda_check1_move_take) begin
-            if ((card_core0_dda_arc1_dda_check1_move_blend || card_core0_dda_arc1_dda_check1_move_error || card_core0_dda_arc1_dda_check1_move_zero)) begin
-                card_core0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger <= (base + less);
+        if (card_core0_dda_axes0_dda_arc1_dda_check1_move_take) begin
+            if ((card_core0_dda_axes0_dda_arc1_dda_check1_move_blend || card_core0_dda_axes0_dda_arc1_dda_check1_move_error || card_core0_dda_axes0_dda_arc1_dda_check1_move_zero)) begin
+                card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
             end
         end
-        else if ((card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)) begin
-            card_core0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
+        else if ((card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && card_core0_dda_axes0_dda_arc1_dda_run1_step_finished)) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_larger <= 27'h7ffffff;
         end
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out, card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_signs
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out, card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in) begin: card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_signs
     reg [28-1:0] inward;
     reg [28-1:0] outward;
     inward = 28'h0;
     outward = 28'h0;
-    inward = ({card_core0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in});
-    outward = ({card_core0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out[(27 - 1)], card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out});
-    card_core0_dda_arc1_dda_run1_step_inward_near = ($signed(inward) >= 0);
-    card_core0_dda_arc1_dda_run1_step_outward_near = ($signed(outward) < 0);
+    inward = ({card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in[(27 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in});
+    outward = ({card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term[(27 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term} + {card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out[(27 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out});
+    card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near = ($signed(inward) >= 0);
+    card_core0_dda_axes0_dda_arc1_dda_run1_step_outward_near = ($signed(outward) < 0);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_error_change
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y, card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_change
     reg [27-1:0] outward;
     reg [27-1:0] inward;
     reg [27-1:0] first_sum;
@@ -7280,30 +7560,30 @@ always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run
     inward = 27'h0;
     first_sum = 27'h0;
     stepped_in = 1'b0;
-    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
-        if (card_core0_dda_arc1_dda_run1_step_step_y) begin
-            outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b1};
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward) begin
+        stepped_in = (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x == 1);
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y) begin
+            outward = {2'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, 1'b1};
         end
-        if (card_core0_dda_arc1_dda_run1_step_step_x) begin
-            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin
+            inward = (~{2'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x, 1'b0});
         end
     end
     else begin
-        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
-        if (card_core0_dda_arc1_dda_run1_step_step_x) begin
-            outward = {2'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b1};
+        stepped_in = (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y == 1);
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin
+            outward = {2'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x, 1'b1};
         end
-        if (card_core0_dda_arc1_dda_run1_step_step_y) begin
-            inward = (~{2'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y) begin
+            inward = (~{2'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, 1'b0});
         end
     end
-    first_sum = ((card_core0_dda_arc1_dda_run1_dda_nearest1_error_term + outward) + {26'h0, stepped_in});
-    card_core0_dda_arc1_dda_run1_dda_nearest1_error_step = ((first_sum + inward) + {26'h0, stepped_in});
+    first_sum = ((card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term + outward) + {26'h0, stepped_in});
+    card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_step = ((first_sum + inward) + {26'h0, stepped_in});
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_update
     reg [27-1:0] base_in;
     reg [27-1:0] base_out;
     reg [27-1:0] op_in;
@@ -7315,20 +7595,20 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
     base_out = 27'h0;
     op_in = 27'h0;
     op_out = 27'h0;
-    stepped_in = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
-    stepped_out = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
-    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-        stepped_in = (card_core0_dda_arc1_dda_run1_step_step_x == 1);
-        stepped_out = (card_core0_dda_arc1_dda_run1_step_step_y == 1);
+    stepped_in = (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y == 1);
+    stepped_out = (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x == 1);
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward) begin
+        stepped_in = (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x == 1);
+        stepped_out = (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y == 1);
     end
-    base_in = card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in;
-    base_out = card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out;
+    base_in = card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in;
+    base_out = card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out;
     op_in = {25'h0, stepped_out, stepped_in};
     op_out = {25'h0, stepped_in, stepped_out};
-    turn = (card_core0_dda_arc1_dda_run1_step_new_piece == 1);
+    turn = (card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece == 1);
     if (turn) begin
-        base_in = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out);
-        base_out = (~card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in);
+        base_in = (~card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out);
+        base_out = (~card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in);
         if ((stepped_in && stepped_out)) begin
             op_in = 27'h7fffffd;
             op_out = 27'h7fffffd;
@@ -7346,99 +7626,99 @@ always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_dda_nearest1_update
             op_out = 0;
         end
     end
-    if ((card_core0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_arc1_dda_run1_step_line))) begin
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in <= ((base_in + op_in) + {26'h0, turn});
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out <= ((base_out + op_out) + {26'h0, turn});
-        card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= card_core0_dda_arc1_dda_run1_dda_nearest1_error_step;
+    if ((card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_line))) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out <= ((base_out + op_out) + {26'h0, turn});
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term <= card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_step;
     end
-    if (card_core0_dda_arc1_dda_check1_move_take) begin
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_in <= card_core0_dda_arc1_dda_check1_move_bias_in;
-        card_core0_dda_arc1_dda_run1_dda_nearest1_bias_out <= card_core0_dda_arc1_dda_check1_move_bias_out;
-        card_core0_dda_arc1_dda_run1_dda_nearest1_error_term <= 1;
+    if (card_core0_dda_axes0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in <= card_core0_dda_axes0_dda_arc1_dda_check1_move_bias_in;
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out <= card_core0_dda_axes0_dda_arc1_dda_check1_move_bias_out;
+        card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term <= 1;
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_arc1_dda_run1_look_ahead
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_axes0_dda_arc1_dda_run1_acc_y, card_core0_dda_axes0_dda_arc1_dda_run1_acc_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_axes0_dda_arc1_dda_run1_look_ahead
     reg [31-1:0] twice_x;
     reg [31-1:0] twice_y;
     twice_x = 31'h0;
     twice_y = 31'h0;
-    twice_x = ({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {6'h0, card_core0_dda_arc1_dda_run1_step_mag_y, 1'b0});
-    twice_y = ({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {6'h0, card_core0_dda_arc1_dda_run1_step_mag_x, 1'b0});
-    card_core0_dda_arc1_dda_run1_ahead_x = ($signed(twice_x) >= 0);
-    card_core0_dda_arc1_dda_run1_ahead_y = ($signed(twice_y) >= 0);
+    twice_x = ({card_core0_dda_axes0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_acc_x} + {6'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, 1'b0});
+    twice_y = ({card_core0_dda_axes0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_acc_y} + {6'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x, 1'b0});
+    card_core0_dda_axes0_dda_arc1_dda_run1_ahead_x = ($signed(twice_x) >= 0);
+    card_core0_dda_axes0_dda_arc1_dda_run1_ahead_y = ($signed(twice_y) >= 0);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_kept_x, card_core0_dda_arc1_dda_run1_threshold, card_core0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_arc1_dda_run1_kept_y, card_core0_dda_arc1_dda_run1_first, card_core0_dda_arc1_dda_run1_acc_x, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_acc_y, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_step_step_y, card_core0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_arc1_dda_run1_accumulate
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_kept_x, card_core0_dda_axes0_dda_arc1_dda_run1_threshold, card_core0_dda_axes0_dda_arc1_dda_run1_threshold_carry, card_core0_dda_axes0_dda_arc1_dda_run1_kept_y, card_core0_dda_axes0_dda_arc1_dda_run1_first, card_core0_dda_axes0_dda_arc1_dda_run1_acc_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_axes0_dda_arc1_dda_run1_acc_y, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y, card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin: card_core0_dda_axes0_dda_arc1_dda_run1_accumulate
     reg [30-1:0] minus_x;
     reg [30-1:0] minus_y;
     minus_x = 30'h0;
     minus_y = 30'h0;
-    card_core0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_x} + {7'h0, card_core0_dda_arc1_dda_run1_step_mag_y}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
-    card_core0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_arc1_dda_run1_acc_y} + {7'h0, card_core0_dda_arc1_dda_run1_step_mag_x}) + {30'h0, card_core0_dda_arc1_dda_run1_first});
-    if (card_core0_dda_arc1_dda_run1_step_step_x) begin
-        minus_x = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    card_core0_dda_axes0_dda_arc1_dda_run1_sum_x = (({card_core0_dda_axes0_dda_arc1_dda_run1_acc_x[(30 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_acc_x} + {7'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y}) + {30'h0, card_core0_dda_axes0_dda_arc1_dda_run1_first});
+    card_core0_dda_axes0_dda_arc1_dda_run1_sum_y = (({card_core0_dda_axes0_dda_arc1_dda_run1_acc_y[(30 - 1)], card_core0_dda_axes0_dda_arc1_dda_run1_acc_y} + {7'h0, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x}) + {30'h0, card_core0_dda_axes0_dda_arc1_dda_run1_first});
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin
+        minus_x = (~{2'h0, card_core0_dda_axes0_dda_arc1_dda_run1_threshold});
     end
-    if (card_core0_dda_arc1_dda_run1_step_step_y) begin
-        minus_y = (~{2'h0, card_core0_dda_arc1_dda_run1_threshold});
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y) begin
+        minus_y = (~{2'h0, card_core0_dda_axes0_dda_arc1_dda_run1_threshold});
     end
-    card_core0_dda_arc1_dda_run1_less_x = ((card_core0_dda_arc1_dda_run1_kept_x + minus_x) + {29'h0, (card_core0_dda_arc1_dda_run1_step_step_x && card_core0_dda_arc1_dda_run1_threshold_carry)});
-    card_core0_dda_arc1_dda_run1_less_y = ((card_core0_dda_arc1_dda_run1_kept_y + minus_y) + {29'h0, (card_core0_dda_arc1_dda_run1_step_step_y && card_core0_dda_arc1_dda_run1_threshold_carry)});
+    card_core0_dda_axes0_dda_arc1_dda_run1_less_x = ((card_core0_dda_axes0_dda_arc1_dda_run1_kept_x + minus_x) + {29'h0, (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x && card_core0_dda_axes0_dda_arc1_dda_run1_threshold_carry)});
+    card_core0_dda_axes0_dda_arc1_dda_run1_less_y = ((card_core0_dda_axes0_dda_arc1_dda_run1_kept_y + minus_y) + {29'h0, (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y && card_core0_dda_axes0_dda_arc1_dda_run1_threshold_carry)});
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_sum_y, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_sum_x, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_over_y) begin: card_core0_dda_arc1_dda_run1_overflow
-    card_core0_dda_arc1_dda_run1_over_x = (!card_core0_dda_arc1_dda_run1_sum_x[30]);
-    card_core0_dda_arc1_dda_run1_over_y = (!card_core0_dda_arc1_dda_run1_sum_y[30]);
-    card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
-    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
-        card_core0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_variant, card_core0_dda_axes0_dda_arc1_dda_run1_sum_y, card_core0_dda_axes0_dda_arc1_dda_run1_sum_x, card_core0_dda_axes0_dda_arc1_dda_run1_sum_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_line, card_core0_dda_axes0_dda_arc1_dda_run1_over_y) begin: card_core0_dda_axes0_dda_arc1_dda_run1_overflow
+    card_core0_dda_axes0_dda_arc1_dda_run1_over_x = (!card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[30]);
+    card_core0_dda_axes0_dda_arc1_dda_run1_over_y = (!card_core0_dda_axes0_dda_arc1_dda_run1_sum_y[30]);
+    card_core0_dda_axes0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
+    if ((1'b0 && (card_core0_dda_axes0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_axes0_dda_arc1_dda_run1_over_y && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_line))) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_saturate_x = ((!card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[30]) && card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[(30 - 1)]);
     end
-    card_core0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
+    card_core0_dda_axes0_dda_arc1_dda_run1_saturate_y = ((!card_core0_dda_axes0_dda_arc1_dda_run1_sum_y[30]) && card_core0_dda_axes0_dda_arc1_dda_run1_sum_y[(30 - 1)]);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_arc1_dda_run1_magnitudes
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x) begin: card_core0_dda_axes0_dda_arc1_dda_run1_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
     op_x = 24'h0;
     op_y = 24'h0;
     op_x = 1;
     op_y = 16777215;
-    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward) begin
         op_x = 16777215;
         op_y = 1;
     end
-    card_core0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_arc1_dda_run1_step_mag_x + op_x);
-    card_core0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_arc1_dda_run1_step_mag_y + op_y);
+    card_core0_dda_axes0_dda_arc1_dda_run1_stepped_x = (card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x + op_x);
+    card_core0_dda_axes0_dda_arc1_dda_run1_stepped_y = (card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y + op_y);
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_radius, card_core0_dda_arc1_dda_run1_target_y, card_core0_dda_arc1_dda_run1_end_y, card_core0_dda_arc1_dda_run1_target_x, card_core0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_arc1_dda_run1_goals
-    card_core0_dda_arc1_dda_run1_goal_x = 0;
-    case (card_core0_dda_arc1_dda_run1_target_x)
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_radius, card_core0_dda_axes0_dda_arc1_dda_run1_target_y, card_core0_dda_axes0_dda_arc1_dda_run1_end_y, card_core0_dda_axes0_dda_arc1_dda_run1_target_x, card_core0_dda_axes0_dda_arc1_dda_run1_end_x) begin: card_core0_dda_axes0_dda_arc1_dda_run1_goals
+    card_core0_dda_axes0_dda_arc1_dda_run1_goal_x = 0;
+    case (card_core0_dda_axes0_dda_arc1_dda_run1_target_x)
         'h1: begin
-            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_radius;
+            card_core0_dda_axes0_dda_arc1_dda_run1_goal_x = card_core0_dda_axes0_dda_arc1_dda_run1_radius;
         end
         'h2: begin
-            card_core0_dda_arc1_dda_run1_goal_x = card_core0_dda_arc1_dda_run1_end_x;
+            card_core0_dda_axes0_dda_arc1_dda_run1_goal_x = card_core0_dda_axes0_dda_arc1_dda_run1_end_x;
         end
     endcase
-    card_core0_dda_arc1_dda_run1_goal_y = 0;
-    case (card_core0_dda_arc1_dda_run1_target_y)
+    card_core0_dda_axes0_dda_arc1_dda_run1_goal_y = 0;
+    case (card_core0_dda_axes0_dda_arc1_dda_run1_target_y)
         'h1: begin
-            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_radius;
+            card_core0_dda_axes0_dda_arc1_dda_run1_goal_y = card_core0_dda_axes0_dda_arc1_dda_run1_radius;
         end
         'h2: begin
-            card_core0_dda_arc1_dda_run1_goal_y = card_core0_dda_arc1_dda_run1_end_y;
+            card_core0_dda_axes0_dda_arc1_dda_run1_goal_y = card_core0_dda_axes0_dda_arc1_dda_run1_end_y;
         end
     endcase
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_arc1_dda_run1_goal_x, card_core0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_arc1_dda_run1_goal_y) begin: card_core0_dda_arc1_dda_run1_end_tests
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y, card_core0_dda_axes0_dda_arc1_dda_run1_goal_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x, card_core0_dda_axes0_dda_arc1_dda_run1_goal_y) begin: card_core0_dda_axes0_dda_arc1_dda_run1_end_tests
     reg [24-1:0] diff_x;
     reg [24-1:0] diff_y;
     reg [23-1:0] up_x;
@@ -7451,26 +7731,26 @@ always @(card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run
     up_y = 23'h0;
     down_x = 23'h0;
     down_y = 23'h0;
-    diff_x = (card_core0_dda_arc1_dda_run1_step_mag_x ^ card_core0_dda_arc1_dda_run1_goal_x);
-    diff_y = (card_core0_dda_arc1_dda_run1_step_mag_y ^ card_core0_dda_arc1_dda_run1_goal_y);
-    up_x = (card_core0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0]));
-    up_y = (card_core0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0]));
-    down_x = (card_core0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0]));
-    down_y = (card_core0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0] & (~card_core0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0]));
-    card_core0_dda_arc1_dda_run1_at_x = (diff_x == 0);
-    card_core0_dda_arc1_dda_run1_at_y = (diff_y == 0);
-    if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-        card_core0_dda_arc1_dda_run1_near_x = (diff_x == {down_x, 1'b1});
-        card_core0_dda_arc1_dda_run1_near_y = (diff_y == {up_y, 1'b1});
+    diff_x = (card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x ^ card_core0_dda_axes0_dda_arc1_dda_run1_goal_x);
+    diff_y = (card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y ^ card_core0_dda_axes0_dda_arc1_dda_run1_goal_y);
+    up_x = (card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0] & (~card_core0_dda_axes0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0]));
+    up_y = (card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0] & (~card_core0_dda_axes0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0]));
+    down_x = (card_core0_dda_axes0_dda_arc1_dda_run1_goal_x[(24 - 1)-1:0] & (~card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x[(24 - 1)-1:0]));
+    down_y = (card_core0_dda_axes0_dda_arc1_dda_run1_goal_y[(24 - 1)-1:0] & (~card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y[(24 - 1)-1:0]));
+    card_core0_dda_axes0_dda_arc1_dda_run1_at_x = (diff_x == 0);
+    card_core0_dda_axes0_dda_arc1_dda_run1_at_y = (diff_y == 0);
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_near_x = (diff_x == {down_x, 1'b1});
+        card_core0_dda_axes0_dda_arc1_dda_run1_near_y = (diff_y == {up_y, 1'b1});
     end
     else begin
-        card_core0_dda_arc1_dda_run1_near_x = (diff_x == {up_x, 1'b1});
-        card_core0_dda_arc1_dda_run1_near_y = (diff_y == {down_y, 1'b1});
+        card_core0_dda_axes0_dda_arc1_dda_run1_near_x = (diff_x == {up_x, 1'b1});
+        card_core0_dda_axes0_dda_arc1_dda_run1_near_y = (diff_y == {down_y, 1'b1});
     end
 end
 
 
-always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x, card_core0_dda_arc1_dda_run1_near_y, card_core0_dda_arc1_dda_run1_variant, card_core0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_arc1_dda_run1_ahead_x, card_core0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_arc1_dda_run1_near_x, card_core0_dda_arc1_dda_run1_at_y, card_core0_dda_arc1_dda_run1_step_last, card_core0_dda_arc1_dda_run1_step_line, card_core0_dda_arc1_dda_run1_crossings, card_core0_dda_arc1_dda_run1_ahead_y, card_core0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_arc1_dda_run1_over_y, card_core0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_arc1_dda_run1_decide
+always @(card_core0_dda_axes0_dda_arc1_dda_run1_over_x, card_core0_dda_axes0_dda_arc1_dda_run1_at_x, card_core0_dda_axes0_dda_arc1_dda_run1_near_y, card_core0_dda_axes0_dda_arc1_dda_run1_variant, card_core0_dda_axes0_dda_arc1_dda_run1_step_outward_near, card_core0_dda_axes0_dda_arc1_dda_run1_ahead_x, card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward, card_core0_dda_axes0_dda_arc1_dda_run1_near_x, card_core0_dda_axes0_dda_arc1_dda_run1_at_y, card_core0_dda_axes0_dda_arc1_dda_run1_step_last, card_core0_dda_axes0_dda_arc1_dda_run1_step_line, card_core0_dda_axes0_dda_arc1_dda_run1_crossings, card_core0_dda_axes0_dda_arc1_dda_run1_ahead_y, card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near, card_core0_dda_axes0_dda_arc1_dda_run1_over_y, card_core0_dda_axes0_dda_arc1_dda_run1_over_x) begin: card_core0_dda_axes0_dda_arc1_dda_run1_decide
     reg step_x;
     reg step_y;
     reg diagonal;
@@ -7479,217 +7759,217 @@ always @(card_core0_dda_arc1_dda_run1_over_x, card_core0_dda_arc1_dda_run1_at_x,
     reg tail_ends;
     reg both_near;
     reg last_piece;
-    step_x = (card_core0_dda_arc1_dda_run1_over_x == 1);
-    step_y = (card_core0_dda_arc1_dda_run1_over_y == 1);
-    diagonal = (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_over_y);
+    step_x = (card_core0_dda_axes0_dda_arc1_dda_run1_over_x == 1);
+    step_y = (card_core0_dda_axes0_dda_arc1_dda_run1_over_y == 1);
+    diagonal = (card_core0_dda_axes0_dda_arc1_dda_run1_over_x && card_core0_dda_axes0_dda_arc1_dda_run1_over_y);
     choose_x = 1'b0;
     choose_y = 1'b0;
     if (1'b1) begin
-        choose_x = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
-        choose_y = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
-        if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-            choose_x = (card_core0_dda_arc1_dda_run1_step_inward_near == 1);
-            choose_y = (card_core0_dda_arc1_dda_run1_step_outward_near == 1);
+        choose_x = (card_core0_dda_axes0_dda_arc1_dda_run1_step_outward_near == 1);
+        choose_y = (card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near == 1);
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward) begin
+            choose_x = (card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near == 1);
+            choose_y = (card_core0_dda_axes0_dda_arc1_dda_run1_step_outward_near == 1);
         end
     end
-    if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0))) begin
-        step_x = ((card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x) || ((!card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_over_x));
-        diagonal = (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_over_x);
+    if ((1'b0 && (card_core0_dda_axes0_dda_arc1_dda_run1_variant == 0))) begin
+        step_x = ((card_core0_dda_axes0_dda_arc1_dda_run1_over_y && card_core0_dda_axes0_dda_arc1_dda_run1_over_x) || ((!card_core0_dda_axes0_dda_arc1_dda_run1_over_y) && card_core0_dda_axes0_dda_arc1_dda_run1_over_x));
+        diagonal = (card_core0_dda_axes0_dda_arc1_dda_run1_over_y && card_core0_dda_axes0_dda_arc1_dda_run1_over_x);
     end
-    else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 2))) begin
-        step_x = (card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x));
-        step_y = (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y));
-        diagonal = ((card_core0_dda_arc1_dda_run1_over_x || (card_core0_dda_arc1_dda_run1_over_y && card_core0_dda_arc1_dda_run1_ahead_x)) && (card_core0_dda_arc1_dda_run1_over_y || (card_core0_dda_arc1_dda_run1_over_x && card_core0_dda_arc1_dda_run1_ahead_y)));
+    else if ((1'b1 && (card_core0_dda_axes0_dda_arc1_dda_run1_variant == 2))) begin
+        step_x = (card_core0_dda_axes0_dda_arc1_dda_run1_over_x || (card_core0_dda_axes0_dda_arc1_dda_run1_over_y && card_core0_dda_axes0_dda_arc1_dda_run1_ahead_x));
+        step_y = (card_core0_dda_axes0_dda_arc1_dda_run1_over_y || (card_core0_dda_axes0_dda_arc1_dda_run1_over_x && card_core0_dda_axes0_dda_arc1_dda_run1_ahead_y));
+        diagonal = ((card_core0_dda_axes0_dda_arc1_dda_run1_over_x || (card_core0_dda_axes0_dda_arc1_dda_run1_over_y && card_core0_dda_axes0_dda_arc1_dda_run1_ahead_x)) && (card_core0_dda_axes0_dda_arc1_dda_run1_over_y || (card_core0_dda_axes0_dda_arc1_dda_run1_over_x && card_core0_dda_axes0_dda_arc1_dda_run1_ahead_y)));
     end
-    else if ((1'b1 && (card_core0_dda_arc1_dda_run1_variant == 3))) begin
-        step_x = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_x);
-        step_y = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && choose_y);
-        diagonal = ((card_core0_dda_arc1_dda_run1_over_x || card_core0_dda_arc1_dda_run1_over_y) && card_core0_dda_arc1_dda_run1_step_inward_near && card_core0_dda_arc1_dda_run1_step_outward_near);
+    else if ((1'b1 && (card_core0_dda_axes0_dda_arc1_dda_run1_variant == 3))) begin
+        step_x = ((card_core0_dda_axes0_dda_arc1_dda_run1_over_x || card_core0_dda_axes0_dda_arc1_dda_run1_over_y) && choose_x);
+        step_y = ((card_core0_dda_axes0_dda_arc1_dda_run1_over_x || card_core0_dda_axes0_dda_arc1_dda_run1_over_y) && choose_y);
+        diagonal = ((card_core0_dda_axes0_dda_arc1_dda_run1_over_x || card_core0_dda_axes0_dda_arc1_dda_run1_over_y) && card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near && card_core0_dda_axes0_dda_arc1_dda_run1_step_outward_near);
     end
-    if (card_core0_dda_arc1_dda_run1_step_line) begin
-        card_core0_dda_arc1_dda_run1_go_x = card_core0_dda_arc1_dda_run1_over_x;
-        card_core0_dda_arc1_dda_run1_go_y = card_core0_dda_arc1_dda_run1_over_y;
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_step_line) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_go_x = card_core0_dda_axes0_dda_arc1_dda_run1_over_x;
+        card_core0_dda_axes0_dda_arc1_dda_run1_go_y = card_core0_dda_axes0_dda_arc1_dda_run1_over_y;
     end
-    else if ((card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y)) begin
-        card_core0_dda_arc1_dda_run1_go_x = (!card_core0_dda_arc1_dda_run1_at_x);
-        card_core0_dda_arc1_dda_run1_go_y = (!card_core0_dda_arc1_dda_run1_at_y);
+    else if ((card_core0_dda_axes0_dda_arc1_dda_run1_at_x || card_core0_dda_axes0_dda_arc1_dda_run1_at_y)) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_go_x = (!card_core0_dda_axes0_dda_arc1_dda_run1_at_x);
+        card_core0_dda_axes0_dda_arc1_dda_run1_go_y = (!card_core0_dda_axes0_dda_arc1_dda_run1_at_y);
     end
     else begin
-        card_core0_dda_arc1_dda_run1_go_x = step_x;
-        card_core0_dda_arc1_dda_run1_go_y = step_y;
+        card_core0_dda_axes0_dda_arc1_dda_run1_go_x = step_x;
+        card_core0_dda_axes0_dda_arc1_dda_run1_go_y = step_y;
     end
-    card_core0_dda_arc1_dda_run1_tail = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y));
-    tail_ends = ((!card_core0_dda_arc1_dda_run1_step_line) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_at_y) && (card_core0_dda_arc1_dda_run1_at_x || card_core0_dda_arc1_dda_run1_near_x) && (card_core0_dda_arc1_dda_run1_at_y || card_core0_dda_arc1_dda_run1_near_y));
-    both_near = ((!card_core0_dda_arc1_dda_run1_step_line) && (!card_core0_dda_arc1_dda_run1_at_x) && (!card_core0_dda_arc1_dda_run1_at_y) && card_core0_dda_arc1_dda_run1_near_x && card_core0_dda_arc1_dda_run1_near_y);
-    last_piece = (card_core0_dda_arc1_dda_run1_crossings == 0);
-    card_core0_dda_arc1_dda_run1_finished = ((card_core0_dda_arc1_dda_run1_step_line && card_core0_dda_arc1_dda_run1_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
-    card_core0_dda_arc1_dda_run1_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
+    card_core0_dda_axes0_dda_arc1_dda_run1_tail = ((!card_core0_dda_axes0_dda_arc1_dda_run1_step_line) && (card_core0_dda_axes0_dda_arc1_dda_run1_at_x || card_core0_dda_axes0_dda_arc1_dda_run1_at_y));
+    tail_ends = ((!card_core0_dda_axes0_dda_arc1_dda_run1_step_line) && (card_core0_dda_axes0_dda_arc1_dda_run1_at_x || card_core0_dda_axes0_dda_arc1_dda_run1_at_y) && (card_core0_dda_axes0_dda_arc1_dda_run1_at_x || card_core0_dda_axes0_dda_arc1_dda_run1_near_x) && (card_core0_dda_axes0_dda_arc1_dda_run1_at_y || card_core0_dda_axes0_dda_arc1_dda_run1_near_y));
+    both_near = ((!card_core0_dda_axes0_dda_arc1_dda_run1_step_line) && (!card_core0_dda_axes0_dda_arc1_dda_run1_at_x) && (!card_core0_dda_axes0_dda_arc1_dda_run1_at_y) && card_core0_dda_axes0_dda_arc1_dda_run1_near_x && card_core0_dda_axes0_dda_arc1_dda_run1_near_y);
+    last_piece = (card_core0_dda_axes0_dda_arc1_dda_run1_crossings == 0);
+    card_core0_dda_axes0_dda_arc1_dda_run1_finished = ((card_core0_dda_axes0_dda_arc1_dda_run1_step_line && card_core0_dda_axes0_dda_arc1_dda_run1_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    card_core0_dda_axes0_dda_arc1_dda_run1_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
 end
 
 
 
-assign card_core0_dda_arc1_dda_check1_move_take = (card_core0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_arc1_dda_run1_active) || (card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished)));
-assign card_core0_dda_arc1_dda_run1_taking = (card_core0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_arc1_dda_run1_step_pending));
+assign card_core0_dda_axes0_dda_arc1_dda_check1_move_take = (card_core0_dda_axes0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_axes0_dda_arc1_dda_run1_active) || (card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && card_core0_dda_axes0_dda_arc1_dda_run1_step_finished)));
+assign card_core0_dda_axes0_dda_arc1_dda_run1_taking = (card_core0_dda_axes0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_pending));
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_decision
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_run1_decision
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_step_new_piece <= 0;
-        card_core0_dda_arc1_dda_run1_step_pending <= 0;
-        card_core0_dda_arc1_dda_run1_tail_taken <= 0;
-        card_core0_regs_fifo1_steps_step_x <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_pending <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_tail_taken <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card_core0_regs_fifo1_steps_dir_x <= 0;
-        card_core0_regs_fifo1_steps_dir_y <= 0;
-        card_core0_regs_fifo1_steps_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_step_step_y <= 0;
-        card_core0_dda_arc1_dda_run1_step_step_x <= 0;
-        card_core0_dda_arc1_dda_run1_step_finished <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_finished <= 0;
     end
     else begin
-        card_core0_regs_fifo1_steps_step_x <= 1'b0;
-        card_core0_regs_fifo1_steps_step_y <= 1'b0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x <= 1'b0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
-        card_core0_dda_arc1_dda_run1_step_pending <= 1'b0;
-        if (card_core0_dda_arc1_dda_run1_taking) begin
-            card_core0_dda_arc1_dda_run1_step_pending <= 1'b1;
-            card_core0_regs_fifo1_steps_step_x <= card_core0_dda_arc1_dda_run1_go_x;
-            card_core0_regs_fifo1_steps_step_y <= card_core0_dda_arc1_dda_run1_go_y;
-            if (card_core0_dda_arc1_dda_run1_step_line) begin
-                card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_arc1_dda_run1_right;
-                card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_arc1_dda_run1_up;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_pending <= 1'b0;
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_taking) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_pending <= 1'b1;
+            card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x <= card_core0_dda_axes0_dda_arc1_dda_run1_go_x;
+            card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y <= card_core0_dda_axes0_dda_arc1_dda_run1_go_y;
+            if (card_core0_dda_axes0_dda_arc1_dda_run1_step_line) begin
+                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x <= card_core0_dda_axes0_dda_arc1_dda_run1_right;
+                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y <= card_core0_dda_axes0_dda_arc1_dda_run1_up;
             end
             else begin
-                card_core0_regs_fifo1_steps_dir_x <= ((card_core0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_arc1_dda_run1_step_x_inward);
-                card_core0_regs_fifo1_steps_dir_y <= ((!card_core0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x <= ((card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y <= ((!card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
             end
-            card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_arc1_dda_run1_finished;
-            card_core0_dda_arc1_dda_run1_step_step_x <= card_core0_dda_arc1_dda_run1_go_x;
-            card_core0_dda_arc1_dda_run1_step_step_y <= card_core0_dda_arc1_dda_run1_go_y;
-            card_core0_dda_arc1_dda_run1_step_finished <= card_core0_dda_arc1_dda_run1_finished;
-            card_core0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_arc1_dda_run1_tail;
-            card_core0_dda_arc1_dda_run1_step_new_piece <= card_core0_dda_arc1_dda_run1_next_piece;
+            card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_axes0_dda_arc1_dda_run1_finished;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x <= card_core0_dda_axes0_dda_arc1_dda_run1_go_x;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y <= card_core0_dda_axes0_dda_arc1_dda_run1_go_y;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_finished <= card_core0_dda_axes0_dda_arc1_dda_run1_finished;
+            card_core0_dda_axes0_dda_arc1_dda_run1_tail_taken <= card_core0_dda_axes0_dda_arc1_dda_run1_tail;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece <= card_core0_dda_axes0_dda_arc1_dda_run1_next_piece;
         end
-        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
+        if ((card_core0_dda_axes0_dda_arc1_dda_check1_move_take && card_core0_dda_axes0_dda_arc1_dda_check1_move_zero)) begin
             card_core0_regs_fifo1_sequencer1_dda_done <= 1'b1;
         end
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_running_move
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_run1_running_move
     if (card_core0_dda_reset == 0) begin
-        card_core0_dda_arc1_dda_run1_active <= 0;
-        card_core0_dda_arc1_dda_run1_variant <= 3;
-        card_core0_dda_arc1_dda_run1_threshold_carry <= 0;
-        card_core0_dda_arc1_dda_run1_first <= 0;
-        card_core0_dda_arc1_dda_run1_step_x_inward <= 0;
-        card_core0_dda_arc1_dda_run1_quadrant <= 0;
-        card_core0_dda_arc1_dda_run1_target_y <= 0;
-        card_core0_dda_arc1_dda_run1_step_blend <= 0;
-        card_core0_dda_arc1_dda_run1_crossings <= 0;
-        card_core0_dda_arc1_dda_run1_target_x <= 0;
-        card_core0_dda_arc1_dda_run1_step_line <= 0;
-        card_core0_dda_arc1_dda_run1_ccw <= 0;
-        card_core0_dda_arc1_dda_run1_right <= 0;
-        card_core0_dda_arc1_dda_run1_up <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_active <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_variant <= 3;
+        card_core0_dda_axes0_dda_arc1_dda_run1_threshold_carry <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_first <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_quadrant <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_target_y <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_blend <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_crossings <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_target_x <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_line <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_ccw <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_right <= 0;
+        card_core0_dda_axes0_dda_arc1_dda_run1_up <= 0;
     end
     else begin
-        if (card_core0_dda_arc1_dda_run1_taking) begin
-            card_core0_dda_arc1_dda_run1_first <= 1'b0;
+        if (card_core0_dda_axes0_dda_arc1_dda_run1_taking) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_first <= 1'b0;
         end
-        else if (card_core0_dda_arc1_dda_run1_step_pending) begin
-            if (card_core0_dda_arc1_dda_run1_step_finished) begin
-                card_core0_dda_arc1_dda_run1_active <= 1'b0;
+        else if (card_core0_dda_axes0_dda_arc1_dda_run1_step_pending) begin
+            if (card_core0_dda_axes0_dda_arc1_dda_run1_step_finished) begin
+                card_core0_dda_axes0_dda_arc1_dda_run1_active <= 1'b0;
             end
-            if (card_core0_dda_arc1_dda_run1_step_new_piece) begin
-                card_core0_dda_arc1_dda_run1_step_x_inward <= (!card_core0_dda_arc1_dda_run1_step_x_inward);
-                card_core0_dda_arc1_dda_run1_crossings <= (card_core0_dda_arc1_dda_run1_crossings - 1);
-                if (card_core0_dda_arc1_dda_run1_ccw) begin
-                    card_core0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_arc1_dda_run1_quadrant + 1);
+            if (card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece) begin
+                card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward <= (!card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_dda_axes0_dda_arc1_dda_run1_crossings <= (card_core0_dda_axes0_dda_arc1_dda_run1_crossings - 1);
+                if (card_core0_dda_axes0_dda_arc1_dda_run1_ccw) begin
+                    card_core0_dda_axes0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_axes0_dda_arc1_dda_run1_quadrant + 1);
                 end
                 else begin
-                    card_core0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_arc1_dda_run1_quadrant - 1);
+                    card_core0_dda_axes0_dda_arc1_dda_run1_quadrant <= (card_core0_dda_axes0_dda_arc1_dda_run1_quadrant - 1);
                 end
-                if ((card_core0_dda_arc1_dda_run1_crossings == 1)) begin
-                    card_core0_dda_arc1_dda_run1_target_x <= 2;
-                    card_core0_dda_arc1_dda_run1_target_y <= 2;
+                if ((card_core0_dda_axes0_dda_arc1_dda_run1_crossings == 1)) begin
+                    card_core0_dda_axes0_dda_arc1_dda_run1_target_x <= 2;
+                    card_core0_dda_axes0_dda_arc1_dda_run1_target_y <= 2;
                 end
-                else if (card_core0_dda_arc1_dda_run1_step_x_inward) begin
-                    card_core0_dda_arc1_dda_run1_target_x <= 1;
-                    card_core0_dda_arc1_dda_run1_target_y <= 0;
+                else if (card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward) begin
+                    card_core0_dda_axes0_dda_arc1_dda_run1_target_x <= 1;
+                    card_core0_dda_axes0_dda_arc1_dda_run1_target_y <= 0;
                 end
                 else begin
-                    card_core0_dda_arc1_dda_run1_target_x <= 0;
-                    card_core0_dda_arc1_dda_run1_target_y <= 1;
+                    card_core0_dda_axes0_dda_arc1_dda_run1_target_x <= 0;
+                    card_core0_dda_axes0_dda_arc1_dda_run1_target_y <= 1;
                 end
             end
         end
-        if ((card_core0_dda_arc1_dda_check1_move_take && (!card_core0_dda_arc1_dda_check1_move_error) && (!card_core0_dda_arc1_dda_check1_move_zero))) begin
-            card_core0_dda_arc1_dda_run1_active <= 1'b1;
-            card_core0_dda_arc1_dda_run1_first <= card_core0_dda_arc1_dda_check1_move_acc_carry;
-            card_core0_dda_arc1_dda_run1_step_line <= card_core0_dda_arc1_dda_check1_move_line;
-            card_core0_dda_arc1_dda_run1_variant <= card_core0_dda_arc1_dda_check1_move_variant;
-            card_core0_dda_arc1_dda_run1_ccw <= card_core0_dda_arc1_dda_check1_move_ccw;
-            card_core0_dda_arc1_dda_run1_step_blend <= card_core0_dda_arc1_dda_check1_move_blend;
-            card_core0_dda_arc1_dda_run1_right <= card_core0_dda_arc1_dda_check1_move_right;
-            card_core0_dda_arc1_dda_run1_up <= card_core0_dda_arc1_dda_check1_move_up;
-            card_core0_dda_arc1_dda_run1_quadrant <= card_core0_dda_arc1_dda_check1_move_quadrant;
-            card_core0_dda_arc1_dda_run1_step_x_inward <= card_core0_dda_arc1_dda_check1_move_x_inward;
-            card_core0_dda_arc1_dda_run1_crossings <= card_core0_dda_arc1_dda_check1_move_crossings;
-            card_core0_dda_arc1_dda_run1_target_x <= card_core0_dda_arc1_dda_check1_move_target_x;
-            card_core0_dda_arc1_dda_run1_target_y <= card_core0_dda_arc1_dda_check1_move_target_y;
-            card_core0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_arc1_dda_check1_move_line;
+        if ((card_core0_dda_axes0_dda_arc1_dda_check1_move_take && (!card_core0_dda_axes0_dda_arc1_dda_check1_move_error) && (!card_core0_dda_axes0_dda_arc1_dda_check1_move_zero))) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_active <= 1'b1;
+            card_core0_dda_axes0_dda_arc1_dda_run1_first <= card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_carry;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_line <= card_core0_dda_axes0_dda_arc1_dda_check1_move_line;
+            card_core0_dda_axes0_dda_arc1_dda_run1_variant <= card_core0_dda_axes0_dda_arc1_dda_check1_move_variant;
+            card_core0_dda_axes0_dda_arc1_dda_run1_ccw <= card_core0_dda_axes0_dda_arc1_dda_check1_move_ccw;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_blend <= card_core0_dda_axes0_dda_arc1_dda_check1_move_blend;
+            card_core0_dda_axes0_dda_arc1_dda_run1_right <= card_core0_dda_axes0_dda_arc1_dda_check1_move_right;
+            card_core0_dda_axes0_dda_arc1_dda_run1_up <= card_core0_dda_axes0_dda_arc1_dda_check1_move_up;
+            card_core0_dda_axes0_dda_arc1_dda_run1_quadrant <= card_core0_dda_axes0_dda_arc1_dda_check1_move_quadrant;
+            card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward <= card_core0_dda_axes0_dda_arc1_dda_check1_move_x_inward;
+            card_core0_dda_axes0_dda_arc1_dda_run1_crossings <= card_core0_dda_axes0_dda_arc1_dda_check1_move_crossings;
+            card_core0_dda_axes0_dda_arc1_dda_run1_target_x <= card_core0_dda_axes0_dda_arc1_dda_check1_move_target_x;
+            card_core0_dda_axes0_dda_arc1_dda_run1_target_y <= card_core0_dda_axes0_dda_arc1_dda_check1_move_target_y;
+            card_core0_dda_axes0_dda_arc1_dda_run1_threshold_carry <= card_core0_dda_axes0_dda_arc1_dda_check1_move_line;
         end
-        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_zero)) begin
-            card_core0_dda_arc1_dda_run1_quadrant <= 0;
+        if ((card_core0_dda_axes0_dda_arc1_dda_check1_move_take && card_core0_dda_axes0_dda_arc1_dda_check1_move_zero)) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_quadrant <= 0;
         end
     end
 end
 
 
-always @(posedge clock) begin: card_core0_dda_arc1_dda_run1_datapath
-    if (card_core0_dda_arc1_dda_run1_taking) begin
-        card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
-        if ((1'b0 && (card_core0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_arc1_dda_run1_over_y && (!card_core0_dda_arc1_dda_run1_step_line))) begin
-            card_core0_dda_arc1_dda_run1_kept_x <= card_core0_dda_arc1_dda_run1_sum_x[30-1:0];
+always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_run1_datapath
+    if (card_core0_dda_axes0_dda_arc1_dda_run1_taking) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_kept_x <= card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[30-1:0];
+        if ((1'b0 && (card_core0_dda_axes0_dda_arc1_dda_run1_variant == 0) && card_core0_dda_axes0_dda_arc1_dda_run1_over_y && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_line))) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_kept_x <= card_core0_dda_axes0_dda_arc1_dda_run1_sum_x[30-1:0];
         end
-        card_core0_dda_arc1_dda_run1_kept_y <= card_core0_dda_arc1_dda_run1_sum_y[30-1:0];
-        if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_x)) begin
-            card_core0_dda_arc1_dda_run1_kept_x <= 536870911;
+        card_core0_dda_axes0_dda_arc1_dda_run1_kept_y <= card_core0_dda_axes0_dda_arc1_dda_run1_sum_y[30-1:0];
+        if ((1'b1 && card_core0_dda_axes0_dda_arc1_dda_run1_saturate_x)) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_kept_x <= 536870911;
         end
-        if ((1'b1 && card_core0_dda_arc1_dda_run1_saturate_y)) begin
-            card_core0_dda_arc1_dda_run1_kept_y <= 536870911;
-        end
-    end
-    else if (card_core0_dda_arc1_dda_run1_step_pending) begin
-        if ((!card_core0_dda_arc1_dda_run1_tail_taken)) begin
-            card_core0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_arc1_dda_run1_less_x);
-            card_core0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_arc1_dda_run1_less_y);
-        end
-        if ((!card_core0_dda_arc1_dda_run1_step_line)) begin
-            if (card_core0_dda_arc1_dda_run1_step_step_x) begin
-                card_core0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_arc1_dda_run1_stepped_x;
-            end
-            if (card_core0_dda_arc1_dda_run1_step_step_y) begin
-                card_core0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_arc1_dda_run1_stepped_y;
-            end
+        if ((1'b1 && card_core0_dda_axes0_dda_arc1_dda_run1_saturate_y)) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_kept_y <= 536870911;
         end
     end
-    if (card_core0_dda_arc1_dda_check1_move_take) begin
-        card_core0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_arc1_dda_check1_move_mag_x;
-        card_core0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_arc1_dda_check1_move_mag_y;
-        card_core0_dda_arc1_dda_run1_end_x <= card_core0_dda_arc1_dda_check1_move_end_x;
-        card_core0_dda_arc1_dda_run1_end_y <= card_core0_dda_arc1_dda_check1_move_end_y;
-        card_core0_dda_arc1_dda_run1_radius <= card_core0_dda_arc1_dda_check1_move_radius;
-        card_core0_dda_arc1_dda_run1_threshold <= card_core0_dda_arc1_dda_check1_move_threshold;
-        card_core0_dda_arc1_dda_run1_acc_x <= card_core0_dda_arc1_dda_check1_move_acc_init;
-        card_core0_dda_arc1_dda_run1_acc_y <= card_core0_dda_arc1_dda_check1_move_acc_init;
+    else if (card_core0_dda_axes0_dda_arc1_dda_run1_step_pending) begin
+        if ((!card_core0_dda_axes0_dda_arc1_dda_run1_tail_taken)) begin
+            card_core0_dda_axes0_dda_arc1_dda_run1_acc_x <= $signed(card_core0_dda_axes0_dda_arc1_dda_run1_less_x);
+            card_core0_dda_axes0_dda_arc1_dda_run1_acc_y <= $signed(card_core0_dda_axes0_dda_arc1_dda_run1_less_y);
+        end
+        if ((!card_core0_dda_axes0_dda_arc1_dda_run1_step_line)) begin
+            if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x) begin
+                card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_axes0_dda_arc1_dda_run1_stepped_x;
+            end
+            if (card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y) begin
+                card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_axes0_dda_arc1_dda_run1_stepped_y;
+            end
+        end
+    end
+    if (card_core0_dda_axes0_dda_arc1_dda_check1_move_take) begin
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_x <= card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_x;
+        card_core0_dda_axes0_dda_arc1_dda_run1_step_mag_y <= card_core0_dda_axes0_dda_arc1_dda_check1_move_mag_y;
+        card_core0_dda_axes0_dda_arc1_dda_run1_end_x <= card_core0_dda_axes0_dda_arc1_dda_check1_move_end_x;
+        card_core0_dda_axes0_dda_arc1_dda_run1_end_y <= card_core0_dda_axes0_dda_arc1_dda_check1_move_end_y;
+        card_core0_dda_axes0_dda_arc1_dda_run1_radius <= card_core0_dda_axes0_dda_arc1_dda_check1_move_radius;
+        card_core0_dda_axes0_dda_arc1_dda_run1_threshold <= card_core0_dda_axes0_dda_arc1_dda_check1_move_threshold;
+        card_core0_dda_axes0_dda_arc1_dda_run1_acc_x <= card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_init;
+        card_core0_dda_axes0_dda_arc1_dda_run1_acc_y <= card_core0_dda_axes0_dda_arc1_dda_check1_move_acc_init;
     end
 end
 
 
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1_dda_run1_errors
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_run1_errors
     if (card_core0_dda_reset == 0) begin
         card_core0_regs_fifo1_sequencer1_dda_error <= 0;
     end
@@ -7697,7 +7977,7 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_arc1
         if ((card_core0_regs_fifo1_sequencer1_dda_start && card_core0_regs_fifo1_sequencer1_dda_ready)) begin
             card_core0_regs_fifo1_sequencer1_dda_error <= 1'b0;
         end
-        if ((card_core0_dda_arc1_dda_check1_move_take && card_core0_dda_arc1_dda_check1_move_error)) begin
+        if ((card_core0_dda_axes0_dda_arc1_dda_check1_move_take && card_core0_dda_axes0_dda_arc1_dda_check1_move_error)) begin
             card_core0_regs_fifo1_sequencer1_dda_error <= 1'b1;
         end
     end
@@ -7705,7 +7985,64 @@ end
 
 
 
-assign card_core0_regs_fifo1_status_words1_words_quadrant = card_core0_dda_arc1_dda_run1_quadrant;
-assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_arc1_dda_run1_active && (!(card_core0_dda_arc1_dda_run1_step_pending && card_core0_dda_arc1_dda_run1_step_finished))));
+assign card_core0_regs_fifo1_status_words1_words_quadrant = card_core0_dda_axes0_dda_arc1_dda_run1_quadrant;
+assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_axes0_dda_arc1_dda_run1_active && (!(card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && card_core0_dda_axes0_dda_arc1_dda_run1_step_finished))));
+
+
+always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0__plane_queue0_follow
+    reg [2-1:0] held;
+    if (card_core0_dda_reset == 0) begin
+        card_core0_dda_axes0__plane_queue0_u_next <= 0;
+        card_core0_dda_axes0_v_run <= 1;
+        card_core0_dda_axes0__plane_queue0_v_next <= 1;
+        card_core0_dda_axes0__plane_queue0_moves <= 0;
+        card_core0_dda_axes0_u_run <= 0;
+    end
+    else begin
+        held = 0;
+        if ((!card_core0_regs_fifo1_sequencer1_dda_error)) begin
+            held = card_core0_dda_axes0__plane_queue0_moves;
+        end
+        if ((card_core0_regs_fifo1_sequencer1_dda_done && (held != 0))) begin
+            held = (held - 1);
+        end
+        if (card_core0_regs_fifo1_sequencer1_dda_start) begin
+            card_core0_dda_axes0__plane_queue0_moves <= (held + 1);
+            if ((held == 0)) begin
+                card_core0_dda_axes0_u_run <= card_core0_regs_fifo1_sequencer1_axes_cmd_u;
+                card_core0_dda_axes0_v_run <= card_core0_regs_fifo1_sequencer1_axes_cmd_v;
+            end
+            else begin
+                card_core0_dda_axes0__plane_queue0_u_next <= card_core0_regs_fifo1_sequencer1_axes_cmd_u;
+                card_core0_dda_axes0__plane_queue0_v_next <= card_core0_regs_fifo1_sequencer1_axes_cmd_v;
+            end
+        end
+        else begin
+            card_core0_dda_axes0__plane_queue0_moves <= held;
+            if ((card_core0_regs_fifo1_sequencer1_dda_done && (card_core0_dda_axes0__plane_queue0_moves == 2))) begin
+                card_core0_dda_axes0_u_run <= card_core0_dda_axes0__plane_queue0_u_next;
+                card_core0_dda_axes0_v_run <= card_core0_dda_axes0__plane_queue0_v_next;
+            end
+        end
+    end
+end
+
+
+always @(card_core0_dda_axes0_v_run, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x, card_core0_dda_axes0_u_run) begin: card_core0_dda_axes0_route_0_route
+    card_core0_regs_fifo1_steps_step_x = ((card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x && (card_core0_dda_axes0_u_run == 0)) || (card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y && (card_core0_dda_axes0_v_run == 0)));
+    card_core0_regs_fifo1_steps_dir_x = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y;
+    if ((card_core0_dda_axes0_u_run == 0)) begin
+        card_core0_regs_fifo1_steps_dir_x = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x;
+    end
+end
+
+
+always @(card_core0_dda_axes0_v_run, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x, card_core0_dda_axes0_u_run) begin: card_core0_dda_axes0_route_1_route
+    card_core0_regs_fifo1_steps_step_y = ((card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x && (card_core0_dda_axes0_u_run == 1)) || (card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y && (card_core0_dda_axes0_v_run == 1)));
+    card_core0_regs_fifo1_steps_dir_y = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y;
+    if ((card_core0_dda_axes0_u_run == 1)) begin
+        card_core0_regs_fifo1_steps_dir_y = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x;
+    end
+end
 
 endmodule

@@ -37,6 +37,8 @@ module regs_fifo (
     dda_quadrant,
     dda_ready,
     dda_stop_left,
+    axes_cmd_u,
+    axes_cmd_v,
     steps_step_x,
     steps_step_y,
     steps_dir_x,
@@ -64,8 +66,9 @@ module regs_fifo (
 // three free places, the promise the target needs before it acknowledges
 // a posted dword, and a write to a full FIFO answers ``retry``, so the
 // target retries or disconnects and no word is lost); ``dda`` (drives the
-// interpolator's command, reads its status); ``steps`` (the interpolator's
-// step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
+// interpolator's command, reads its status); ``axes_cmd`` (the plane and
+// a LINE's displacements for the N-axis interpolator, ``AxesCommand``);
+// ``steps`` (the interpolator's step requests, every axis); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
 // inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
 // stop resets and holds the sequencer, the direct pulses and the pulse
 // outputs and resets the DDA; the FIFO keeps its words until
@@ -152,6 +155,10 @@ input dda_error;
 input [1:0] dda_quadrant;
 input dda_ready;
 input [26:0] dda_stop_left;
+output [0:0] axes_cmd_u;
+reg [0:0] axes_cmd_u;
+output [0:0] axes_cmd_v;
+reg [0:0] axes_cmd_v;
 input steps_step_x;
 input steps_step_y;
 input steps_dir_x;
@@ -615,9 +622,8 @@ wire [31:0] reg_word38_shown_wide;
 reg [31:0] reg_word38_written;
 wire reg_word38_chain_out_clamped;
 wire sequencer0_arriving_coord_fits;
-reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
-reg sequencer0_arriving_moves;
+reg sequencer0_bad_axes;
 reg sequencer0_bad_header_bits;
 reg sequencer0_bad_opcode;
 reg sequencer0_bad_operand;
@@ -627,16 +633,14 @@ reg [3:0] sequencer0_coord_mask;
 reg [3:0] sequencer0_count_mask;
 wire sequencer0_discard;
 reg [31:0] sequencer0_dwell_left;
-reg [2:0] sequencer0_fetched;
+reg [3:0] sequencer0_fetched;
 reg sequencer0_finishing;
 reg [16:0] sequencer0_header;
 wire sequencer0_issue;
-reg [15:0] sequencer0_mask_high;
-reg [15:0] sequencer0_mask_low;
+reg sequencer0_line_in;
 wire sequencer0_motion_done;
-reg [2:0] sequencer0_next_count;
+reg [3:0] sequencer0_next_count;
 reg [3:0] sequencer0_next_error;
-reg sequencer0_next_known;
 reg sequencer0_next_motion;
 reg sequencer0_next_valid;
 reg [3:0] sequencer0_opcode;
@@ -644,15 +648,35 @@ reg [31:0] sequencer0_operand_0;
 reg [23:0] sequencer0_operand_1;
 reg [23:0] sequencer0_operand_2;
 reg [23:0] sequencer0_operand_3;
+reg [0:0] sequencer0_plane_u;
+reg [0:0] sequencer0_plane_v;
 reg sequencer0_set_known;
+reg [3:0] sequencer0_slot_taken;
+reg [3:0] sequencer0_slots_left;
 reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
+reg sequencer0_arriving_has_operands;
+reg sequencer0_arriving_moves;
+reg [3:0] sequencer0_arriving_operands;
+reg [3:0] sequencer0_arriving_slots;
+reg [0:0] sequencer0_arriving_u;
+reg [0:0] sequencer0_arriving_v;
+reg sequencer0_arriving_known;
+reg sequencer0_arriving_reserved;
+reg sequencer0_arriving_out_of_range;
 reg sequencer0_mark_strobe;
 reg signed [23:0] sequencer0_pulses_count_x;
 reg signed [23:0] sequencer0_pulses_count_y;
 reg [15:0] sequencer0_mark_tag;
+reg [15:0] sequencer0_command_header0_allowed_high;
+reg [15:0] sequencer0_command_header0_allowed_low;
+reg [3:0] sequencer0_command_header0_fixed_count;
+reg sequencer0_command_header0_has_axes;
+reg [3:0] sequencer0_command_header0_lead_count;
+reg [3:0] sequencer0_command_header0_ones;
+reg [3:0] sequencer0_command_header0_zero_count;
 wire feed_rate0_above;
 wire feed_rate0_above_floor;
 wire feed_rate0_advancing;
@@ -2925,29 +2949,117 @@ assign sequencer0_arriving_coord_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fif
 assign sequencer0_arriving_count_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(fifo_dout) begin: sequencer0_lookup_arriving
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup0_look_up
     case (fifo_dout[32-1:28])
-        0: sequencer0_arriving_count = 0;
-        1: sequencer0_arriving_count = 2;
-        2: sequencer0_arriving_count = 4;
-        3: sequencer0_arriving_count = 2;
-        4: sequencer0_arriving_count = 1;
-        5: sequencer0_arriving_count = 1;
-        6: sequencer0_arriving_count = 0;
-        7: sequencer0_arriving_count = 0;
-        8: sequencer0_arriving_count = 0;
-        9: sequencer0_arriving_count = 0;
-        10: sequencer0_arriving_count = 0;
-        11: sequencer0_arriving_count = 0;
-        12: sequencer0_arriving_count = 0;
-        13: sequencer0_arriving_count = 0;
-        14: sequencer0_arriving_count = 0;
-        default: sequencer0_arriving_count = 0;
+        0: sequencer0_command_header0_fixed_count = 0;
+        1: sequencer0_command_header0_fixed_count = 0;
+        2: sequencer0_command_header0_fixed_count = 4;
+        3: sequencer0_command_header0_fixed_count = 0;
+        4: sequencer0_command_header0_fixed_count = 1;
+        5: sequencer0_command_header0_fixed_count = 1;
+        6: sequencer0_command_header0_fixed_count = 0;
+        7: sequencer0_command_header0_fixed_count = 0;
+        8: sequencer0_command_header0_fixed_count = 0;
+        9: sequencer0_command_header0_fixed_count = 0;
+        10: sequencer0_command_header0_fixed_count = 0;
+        11: sequencer0_command_header0_fixed_count = 0;
+        12: sequencer0_command_header0_fixed_count = 0;
+        13: sequencer0_command_header0_fixed_count = 0;
+        14: sequencer0_command_header0_fixed_count = 0;
+        default: sequencer0_command_header0_fixed_count = 0;
     endcase
 end
 
 
-always @(fifo_dout) begin: sequencer0_lookup_arriving_kind
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup1_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0_zero_count = 0;
+        1: sequencer0_command_header0_zero_count = 2;
+        2: sequencer0_command_header0_zero_count = 0;
+        3: sequencer0_command_header0_zero_count = 2;
+        4: sequencer0_command_header0_zero_count = 0;
+        5: sequencer0_command_header0_zero_count = 0;
+        6: sequencer0_command_header0_zero_count = 0;
+        7: sequencer0_command_header0_zero_count = 0;
+        8: sequencer0_command_header0_zero_count = 0;
+        9: sequencer0_command_header0_zero_count = 0;
+        10: sequencer0_command_header0_zero_count = 0;
+        11: sequencer0_command_header0_zero_count = 0;
+        12: sequencer0_command_header0_zero_count = 0;
+        13: sequencer0_command_header0_zero_count = 0;
+        14: sequencer0_command_header0_zero_count = 0;
+        default: sequencer0_command_header0_zero_count = 0;
+    endcase
+end
+
+
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup2_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0_lead_count = 0;
+        1: sequencer0_command_header0_lead_count = 0;
+        2: sequencer0_command_header0_lead_count = 1;
+        3: sequencer0_command_header0_lead_count = 0;
+        4: sequencer0_command_header0_lead_count = 0;
+        5: sequencer0_command_header0_lead_count = 0;
+        6: sequencer0_command_header0_lead_count = 0;
+        7: sequencer0_command_header0_lead_count = 0;
+        8: sequencer0_command_header0_lead_count = 0;
+        9: sequencer0_command_header0_lead_count = 0;
+        10: sequencer0_command_header0_lead_count = 0;
+        11: sequencer0_command_header0_lead_count = 0;
+        12: sequencer0_command_header0_lead_count = 0;
+        13: sequencer0_command_header0_lead_count = 0;
+        14: sequencer0_command_header0_lead_count = 0;
+        default: sequencer0_command_header0_lead_count = 0;
+    endcase
+end
+
+
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup3_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0_has_axes = 0;
+        1: sequencer0_command_header0_has_axes = 1;
+        2: sequencer0_command_header0_has_axes = 1;
+        3: sequencer0_command_header0_has_axes = 1;
+        4: sequencer0_command_header0_has_axes = 0;
+        5: sequencer0_command_header0_has_axes = 0;
+        6: sequencer0_command_header0_has_axes = 0;
+        7: sequencer0_command_header0_has_axes = 0;
+        8: sequencer0_command_header0_has_axes = 0;
+        9: sequencer0_command_header0_has_axes = 0;
+        10: sequencer0_command_header0_has_axes = 0;
+        11: sequencer0_command_header0_has_axes = 0;
+        12: sequencer0_command_header0_has_axes = 0;
+        13: sequencer0_command_header0_has_axes = 0;
+        14: sequencer0_command_header0_has_axes = 0;
+        default: sequencer0_command_header0_has_axes = 0;
+    endcase
+end
+
+
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup4_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_arriving_known = 0;
+        1: sequencer0_arriving_known = 1;
+        2: sequencer0_arriving_known = 1;
+        3: sequencer0_arriving_known = 1;
+        4: sequencer0_arriving_known = 1;
+        5: sequencer0_arriving_known = 1;
+        6: sequencer0_arriving_known = 1;
+        7: sequencer0_arriving_known = 0;
+        8: sequencer0_arriving_known = 0;
+        9: sequencer0_arriving_known = 0;
+        10: sequencer0_arriving_known = 0;
+        11: sequencer0_arriving_known = 0;
+        12: sequencer0_arriving_known = 0;
+        13: sequencer0_arriving_known = 0;
+        14: sequencer0_arriving_known = 0;
+        default: sequencer0_arriving_known = 0;
+    endcase
+end
+
+
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup5_look_up
     case (fifo_dout[32-1:28])
         0: sequencer0_arriving_moves = 0;
         1: sequencer0_arriving_moves = 1;
@@ -2969,98 +3081,250 @@ always @(fifo_dout) begin: sequencer0_lookup_arriving_kind
 end
 
 
-always @(sequencer0_opcode) begin: sequencer0_lookup_count
-    case (sequencer0_opcode)
-        0: sequencer0_next_count = 0;
-        1: sequencer0_next_count = 2;
-        2: sequencer0_next_count = 4;
-        3: sequencer0_next_count = 2;
-        4: sequencer0_next_count = 1;
-        5: sequencer0_next_count = 1;
-        6: sequencer0_next_count = 0;
-        7: sequencer0_next_count = 0;
-        8: sequencer0_next_count = 0;
-        9: sequencer0_next_count = 0;
-        10: sequencer0_next_count = 0;
-        11: sequencer0_next_count = 0;
-        12: sequencer0_next_count = 0;
-        13: sequencer0_next_count = 0;
-        14: sequencer0_next_count = 0;
-        default: sequencer0_next_count = 0;
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup6_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_arriving_has_operands = 0;
+        1: sequencer0_arriving_has_operands = 1;
+        2: sequencer0_arriving_has_operands = 1;
+        3: sequencer0_arriving_has_operands = 1;
+        4: sequencer0_arriving_has_operands = 1;
+        5: sequencer0_arriving_has_operands = 1;
+        6: sequencer0_arriving_has_operands = 0;
+        7: sequencer0_arriving_has_operands = 0;
+        8: sequencer0_arriving_has_operands = 0;
+        9: sequencer0_arriving_has_operands = 0;
+        10: sequencer0_arriving_has_operands = 0;
+        11: sequencer0_arriving_has_operands = 0;
+        12: sequencer0_arriving_has_operands = 0;
+        13: sequencer0_arriving_has_operands = 0;
+        14: sequencer0_arriving_has_operands = 0;
+        default: sequencer0_arriving_has_operands = 0;
     endcase
 end
 
 
-always @(fifo_dout) begin: sequencer0_lookup_valid
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup7_look_up
     case (fifo_dout[32-1:28])
-        0: sequencer0_next_known = 0;
-        1: sequencer0_next_known = 1;
-        2: sequencer0_next_known = 1;
-        3: sequencer0_next_known = 1;
-        4: sequencer0_next_known = 1;
-        5: sequencer0_next_known = 1;
-        6: sequencer0_next_known = 1;
-        7: sequencer0_next_known = 0;
-        8: sequencer0_next_known = 0;
-        9: sequencer0_next_known = 0;
-        10: sequencer0_next_known = 0;
-        11: sequencer0_next_known = 0;
-        12: sequencer0_next_known = 0;
-        13: sequencer0_next_known = 0;
-        14: sequencer0_next_known = 0;
-        default: sequencer0_next_known = 0;
+        0: sequencer0_command_header0_allowed_high = 0;
+        1: sequencer0_command_header0_allowed_high = 62449;
+        2: sequencer0_command_header0_allowed_high = 62463;
+        3: sequencer0_command_header0_allowed_high = 62448;
+        4: sequencer0_command_header0_allowed_high = 61440;
+        5: sequencer0_command_header0_allowed_high = 61440;
+        6: sequencer0_command_header0_allowed_high = 61440;
+        7: sequencer0_command_header0_allowed_high = 0;
+        8: sequencer0_command_header0_allowed_high = 0;
+        9: sequencer0_command_header0_allowed_high = 0;
+        10: sequencer0_command_header0_allowed_high = 0;
+        11: sequencer0_command_header0_allowed_high = 0;
+        12: sequencer0_command_header0_allowed_high = 0;
+        13: sequencer0_command_header0_allowed_high = 0;
+        14: sequencer0_command_header0_allowed_high = 0;
+        default: sequencer0_command_header0_allowed_high = 0;
     endcase
 end
 
 
-always @(fifo_dout) begin: sequencer0_lookup_mask_high
+always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup8_look_up
     case (fifo_dout[32-1:28])
-        0: sequencer0_mask_high = 0;
-        1: sequencer0_mask_high = 61441;
-        2: sequencer0_mask_high = 61441;
-        3: sequencer0_mask_high = 61440;
-        4: sequencer0_mask_high = 61440;
-        5: sequencer0_mask_high = 61440;
-        6: sequencer0_mask_high = 61440;
-        7: sequencer0_mask_high = 0;
-        8: sequencer0_mask_high = 0;
-        9: sequencer0_mask_high = 0;
-        10: sequencer0_mask_high = 0;
-        11: sequencer0_mask_high = 0;
-        12: sequencer0_mask_high = 0;
-        13: sequencer0_mask_high = 0;
-        14: sequencer0_mask_high = 0;
-        default: sequencer0_mask_high = 0;
+        0: sequencer0_command_header0_allowed_low = 0;
+        1: sequencer0_command_header0_allowed_low = 0;
+        2: sequencer0_command_header0_allowed_low = 65535;
+        3: sequencer0_command_header0_allowed_low = 0;
+        4: sequencer0_command_header0_allowed_low = 15;
+        5: sequencer0_command_header0_allowed_low = 0;
+        6: sequencer0_command_header0_allowed_low = 65535;
+        7: sequencer0_command_header0_allowed_low = 0;
+        8: sequencer0_command_header0_allowed_low = 0;
+        9: sequencer0_command_header0_allowed_low = 0;
+        10: sequencer0_command_header0_allowed_low = 0;
+        11: sequencer0_command_header0_allowed_low = 0;
+        12: sequencer0_command_header0_allowed_low = 0;
+        13: sequencer0_command_header0_allowed_low = 0;
+        14: sequencer0_command_header0_allowed_low = 0;
+        default: sequencer0_command_header0_allowed_low = 0;
     endcase
 end
 
 
-always @(fifo_dout) begin: sequencer0_lookup_mask_low
-    case (fifo_dout[32-1:28])
-        0: sequencer0_mask_low = 0;
-        1: sequencer0_mask_low = 0;
-        2: sequencer0_mask_low = 8191;
-        3: sequencer0_mask_low = 0;
-        4: sequencer0_mask_low = 15;
-        5: sequencer0_mask_low = 0;
-        6: sequencer0_mask_low = 65535;
-        7: sequencer0_mask_low = 0;
-        8: sequencer0_mask_low = 0;
-        9: sequencer0_mask_low = 0;
-        10: sequencer0_mask_low = 0;
-        11: sequencer0_mask_low = 0;
-        12: sequencer0_mask_low = 0;
-        13: sequencer0_mask_low = 0;
-        14: sequencer0_mask_low = 0;
-        default: sequencer0_mask_low = 0;
+always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup9_look_up
+    case (fifo_dout[26-1:20])
+        0: sequencer0_command_header0_ones = 0;
+        1: sequencer0_command_header0_ones = 1;
+        2: sequencer0_command_header0_ones = 1;
+        3: sequencer0_command_header0_ones = 2;
+        4: sequencer0_command_header0_ones = 1;
+        5: sequencer0_command_header0_ones = 2;
+        6: sequencer0_command_header0_ones = 2;
+        7: sequencer0_command_header0_ones = 3;
+        8: sequencer0_command_header0_ones = 1;
+        9: sequencer0_command_header0_ones = 2;
+        10: sequencer0_command_header0_ones = 2;
+        11: sequencer0_command_header0_ones = 3;
+        12: sequencer0_command_header0_ones = 2;
+        13: sequencer0_command_header0_ones = 3;
+        14: sequencer0_command_header0_ones = 3;
+        15: sequencer0_command_header0_ones = 4;
+        16: sequencer0_command_header0_ones = 1;
+        17: sequencer0_command_header0_ones = 2;
+        18: sequencer0_command_header0_ones = 2;
+        19: sequencer0_command_header0_ones = 3;
+        20: sequencer0_command_header0_ones = 2;
+        21: sequencer0_command_header0_ones = 3;
+        22: sequencer0_command_header0_ones = 3;
+        23: sequencer0_command_header0_ones = 4;
+        24: sequencer0_command_header0_ones = 2;
+        25: sequencer0_command_header0_ones = 3;
+        26: sequencer0_command_header0_ones = 3;
+        27: sequencer0_command_header0_ones = 4;
+        28: sequencer0_command_header0_ones = 3;
+        29: sequencer0_command_header0_ones = 4;
+        30: sequencer0_command_header0_ones = 4;
+        31: sequencer0_command_header0_ones = 5;
+        32: sequencer0_command_header0_ones = 1;
+        33: sequencer0_command_header0_ones = 2;
+        34: sequencer0_command_header0_ones = 2;
+        35: sequencer0_command_header0_ones = 3;
+        36: sequencer0_command_header0_ones = 2;
+        37: sequencer0_command_header0_ones = 3;
+        38: sequencer0_command_header0_ones = 3;
+        39: sequencer0_command_header0_ones = 4;
+        40: sequencer0_command_header0_ones = 2;
+        41: sequencer0_command_header0_ones = 3;
+        42: sequencer0_command_header0_ones = 3;
+        43: sequencer0_command_header0_ones = 4;
+        44: sequencer0_command_header0_ones = 3;
+        45: sequencer0_command_header0_ones = 4;
+        46: sequencer0_command_header0_ones = 4;
+        47: sequencer0_command_header0_ones = 5;
+        48: sequencer0_command_header0_ones = 2;
+        49: sequencer0_command_header0_ones = 3;
+        50: sequencer0_command_header0_ones = 3;
+        51: sequencer0_command_header0_ones = 4;
+        52: sequencer0_command_header0_ones = 3;
+        53: sequencer0_command_header0_ones = 4;
+        54: sequencer0_command_header0_ones = 4;
+        55: sequencer0_command_header0_ones = 5;
+        56: sequencer0_command_header0_ones = 3;
+        57: sequencer0_command_header0_ones = 4;
+        58: sequencer0_command_header0_ones = 4;
+        59: sequencer0_command_header0_ones = 5;
+        60: sequencer0_command_header0_ones = 4;
+        61: sequencer0_command_header0_ones = 5;
+        62: sequencer0_command_header0_ones = 5;
+        default: sequencer0_command_header0_ones = 6;
     endcase
+end
+
+
+always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_header0_has_axes, sequencer0_command_header0_ones, sequencer0_command_header0_allowed_high, sequencer0_command_header0_allowed_low, sequencer0_command_header0_lead_count, sequencer0_command_header0_fixed_count) begin: sequencer0_command_header0_frame
+    sequencer0_arriving_operands = sequencer0_command_header0_fixed_count;
+    if (sequencer0_command_header0_has_axes) begin
+        if ((fifo_dout[26-1:20] == 0)) begin
+            sequencer0_arriving_operands = (sequencer0_command_header0_fixed_count + sequencer0_command_header0_zero_count);
+        end
+        else begin
+            sequencer0_arriving_operands = ((sequencer0_command_header0_fixed_count + sequencer0_command_header0_lead_count) + sequencer0_command_header0_ones);
+        end
+    end
+    sequencer0_arriving_reserved = (((fifo_dout[32-1:16] & (~sequencer0_command_header0_allowed_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_command_header0_allowed_low)) != 0));
+end
+
+
+always @(fifo_dout) begin: sequencer0_command_header0_check_axes
+    sequencer0_arriving_out_of_range = 1'b0;
+    if ((fifo_dout[32-1:28] == 1)) begin
+        sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] & 60) != 0);
+    end
+    else if ((fifo_dout[32-1:28] == 3)) begin
+        sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] != 0) && (fifo_dout[26-1:20] != 3));
+    end
+    else if ((fifo_dout[32-1:28] == 2)) begin
+        sequencer0_arriving_out_of_range = ((fifo_dout[16-1:13] >= 2) || (fifo_dout[20-1:17] >= 2) || ((fifo_dout[16-1:13] == fifo_dout[20-1:17]) && (fifo_dout[16-1:13] != 0)) || (fifo_dout[26-1:20] != 0));
+    end
+end
+
+
+always @(fifo_dout) begin: sequencer0_command_header0_plane
+    sequencer0_arriving_u = fifo_dout[13+:1];
+    sequencer0_arriving_v = fifo_dout[17+:1];
+    if (((fifo_dout[16-1:13] == 0) && (fifo_dout[20-1:17] == 0))) begin
+        sequencer0_arriving_v = 1;
+    end
+end
+
+
+always @(fifo_dout) begin: sequencer0_command_header0_slots
+    sequencer0_arriving_slots = 15;
+    if ((fifo_dout[32-1:28] == 1)) begin
+        if ((fifo_dout[26-1:20] == 0)) begin
+            sequencer0_arriving_slots = 3;
+        end
+        else begin
+            sequencer0_arriving_slots = fifo_dout[20+:4];
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register0_hold
+    if (reset == 0) begin
+        sequencer0_operand_0 <= 0;
+    end
+    else begin
+        if (sequencer0_slot_taken[0]) begin
+            sequencer0_operand_0 <= fifo_dout[32-1:0];
+        end
+        else if (sequencer0_line_in) begin
+            sequencer0_operand_0 <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register1_hold
+    if (reset == 0) begin
+        sequencer0_operand_1 <= 0;
+    end
+    else begin
+        if (sequencer0_slot_taken[1]) begin
+            sequencer0_operand_1 <= fifo_dout[24-1:0];
+        end
+        else if (sequencer0_line_in) begin
+            sequencer0_operand_1 <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register2_hold
+    if (reset == 0) begin
+        sequencer0_operand_2 <= 0;
+    end
+    else begin
+        if (sequencer0_slot_taken[2]) begin
+            sequencer0_operand_2 <= fifo_dout[24-1:0];
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_operand_register3_hold
+    if (reset == 0) begin
+        sequencer0_operand_3 <= 0;
+    end
+    else begin
+        if (sequencer0_slot_taken[3]) begin
+            sequencer0_operand_3 <= fifo_dout[24-1:0];
+        end
+    end
 end
 
 
 always @(sequencer0_opcode) begin: sequencer0_lookup_coords
     case (sequencer0_opcode)
         0: sequencer0_coord_mask = 0;
-        1: sequencer0_coord_mask = 3;
+        1: sequencer0_coord_mask = 15;
         2: sequencer0_coord_mask = 15;
         3: sequencer0_coord_mask = 0;
         4: sequencer0_coord_mask = 0;
@@ -3084,7 +3348,7 @@ always @(sequencer0_opcode) begin: sequencer0_lookup_counts
         0: sequencer0_count_mask = 0;
         1: sequencer0_count_mask = 0;
         2: sequencer0_count_mask = 0;
-        3: sequencer0_count_mask = 3;
+        3: sequencer0_count_mask = 15;
         4: sequencer0_count_mask = 0;
         5: sequencer0_count_mask = 0;
         6: sequencer0_count_mask = 0;
@@ -3133,18 +3397,35 @@ always @(fifo_dout) begin: sequencer0_lookup_variant
 end
 
 
-always @(sequencer0_arriving_count, fifo_empty, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, sequencer_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
+always @(fifo_empty, sequencer0_arriving_has_operands, sequencer0_state, sequencer0_word_due, sequencer0_next_valid, sequencer_clear, sequencer0_next_count, sequencer0_fetched) begin: sequencer0_fetch_request
     reg more;
     more = 1'b1;
     if (sequencer0_word_due) begin
         if ((sequencer0_fetched == 0)) begin
-            more = (sequencer0_arriving_count != 0);
+            more = (sequencer0_arriving_has_operands == 1);
         end
         else begin
             more = (sequencer0_fetched < sequencer0_next_count);
         end
     end
     fifo_pop = ((!fifo_empty) && (!sequencer0_next_valid) && more && (!sequencer_clear) && (sequencer0_state != 3'b100));
+end
+
+
+always @(fifo_dout, sequencer0_slots_left, sequencer0_word_due, sequencer_clear, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
+    reg [4-1:0] taken;
+    integer index;
+    sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
+    taken = 4'h0;
+    if ((sequencer0_word_due && (sequencer0_fetched != 0) && (!sequencer_clear) && (!sequencer0_discard))) begin
+        for (index=4-1; index>=0; index=index-1) begin
+            if (sequencer0_slots_left[index]) begin
+                taken = 0;
+                taken[index] = 1;
+            end
+        end
+    end
+    sequencer0_slot_taken = taken;
 end
 
 
@@ -3155,21 +3436,22 @@ assign sequencer0_discard = (clear_error && (sequencer0_state == 3'b100) && (err
 
 always @(posedge clock, negedge reset) begin: sequencer0_fetch
     if (reset == 0) begin
-        sequencer0_operand_0 <= 0;
+        sequencer0_bad_axes <= 0;
         sequencer0_bad_variant <= 0;
+        sequencer0_plane_u <= 0;
         sequencer0_next_motion <= 0;
+        sequencer0_slots_left <= 0;
         sequencer0_bad_set_index <= 0;
-        sequencer0_operand_3 <= 0;
         sequencer0_bad_opcode <= 0;
         sequencer0_word_due <= 0;
         sequencer0_next_valid <= 0;
-        sequencer0_bad_operand <= 0;
+        sequencer0_plane_v <= 1;
         sequencer0_header <= 0;
-        sequencer0_operand_1 <= 0;
+        sequencer0_bad_operand <= 0;
         sequencer0_bad_header_bits <= 0;
         sequencer0_opcode <= 0;
+        sequencer0_next_count <= 0;
         sequencer0_fetched <= 0;
-        sequencer0_operand_2 <= 0;
     end
     else begin
         sequencer0_word_due <= fifo_pop;
@@ -3187,12 +3469,17 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                     sequencer0_opcode <= fifo_dout[32-1:28];
                     sequencer0_header <= fifo_dout[17-1:0];
                     sequencer0_next_motion <= sequencer0_arriving_moves;
-                    sequencer0_bad_opcode <= (!sequencer0_next_known);
-                    sequencer0_bad_header_bits <= (((fifo_dout[32-1:16] & (~sequencer0_mask_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_mask_low)) != 0));
+                    sequencer0_next_count <= sequencer0_arriving_operands;
+                    sequencer0_slots_left <= sequencer0_arriving_slots;
+                    sequencer0_plane_u <= sequencer0_arriving_u;
+                    sequencer0_plane_v <= sequencer0_arriving_v;
+                    sequencer0_bad_opcode <= (!sequencer0_arriving_known);
+                    sequencer0_bad_header_bits <= sequencer0_arriving_reserved;
+                    sequencer0_bad_axes <= sequencer0_arriving_out_of_range;
                     sequencer0_bad_set_index <= ((fifo_dout[32-1:28] == 4) && (!sequencer0_set_known));
                     sequencer0_bad_variant <= ((fifo_dout[32-1:28] == 2) && (!sequencer0_variant_built));
                     sequencer0_bad_operand <= 0;
-                    if ((sequencer0_arriving_count == 0)) begin
+                    if ((!sequencer0_arriving_has_operands)) begin
                         sequencer0_next_valid <= 1;
                     end
                     else begin
@@ -3200,21 +3487,8 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                     end
                 end
                 else begin
-                    case (sequencer0_fetched)
-                        'h1: begin
-                            sequencer0_operand_0 <= fifo_dout;
-                        end
-                        'h2: begin
-                            sequencer0_operand_1 <= fifo_dout[24-1:0];
-                        end
-                        'h3: begin
-                            sequencer0_operand_2 <= fifo_dout[24-1:0];
-                        end
-                        default: begin
-                            sequencer0_operand_3 <= fifo_dout[24-1:0];
-                        end
-                    endcase
-                    if (((sequencer0_coord_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_coord_fits)) || (sequencer0_count_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_count_fits)))) begin
+                    sequencer0_slots_left <= (sequencer0_slots_left & (~sequencer0_slot_taken));
+                    if (((sequencer0_fetched <= 4) && ((sequencer0_coord_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_coord_fits)) || (sequencer0_count_mask[($signed({1'b0, sequencer0_fetched}) - 1)] && (!sequencer0_arriving_count_fits))))) begin
                         sequencer0_bad_operand <= 1;
                     end
                     if ((sequencer0_fetched == sequencer0_next_count)) begin
@@ -3231,7 +3505,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
 end
 
 
-always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits) begin: sequencer0_check
+always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits, sequencer0_bad_axes) begin: sequencer0_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -3241,7 +3515,7 @@ always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_opcode
     else if (sequencer0_bad_header_bits) begin
         result = 2;
     end
-    else if ((sequencer0_bad_set_index || sequencer0_bad_operand || sequencer0_bad_variant)) begin
+    else if ((sequencer0_bad_set_index || sequencer0_bad_operand || sequencer0_bad_variant || sequencer0_bad_axes)) begin
         result = 3;
     end
     sequencer0_next_error = result;
@@ -3371,7 +3645,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_dwell_count
 end
 
 
-always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, sequencer0_header, sequencer0_opcode, sequencer0_operand_2) begin: sequencer0_present
+always @(sequencer0_operand_0, sequencer0_plane_u, sequencer0_operand_3, sequencer0_operand_1, sequencer0_header, sequencer0_opcode, sequencer0_plane_v, sequencer0_operand_2) begin: sequencer0_present
     dda_line = (sequencer0_opcode == 1);
     dda_ccw = sequencer0_header[0];
     dda_blend = sequencer0_header[16];
@@ -3395,6 +3669,8 @@ always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, seque
     set_index = sequencer0_header[4-1:0];
     set_value = sequencer0_operand_0;
     sequencer0_mark_tag = sequencer0_header[16-1:0];
+    axes_cmd_u = sequencer0_plane_u;
+    axes_cmd_v = sequencer0_plane_v;
 end
 
 

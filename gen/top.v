@@ -732,9 +732,8 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word116_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word116_written;
 wire card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
-reg [2:0] card1_card_core1_regs_fifo2_sequencer2_arriving_count;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
-reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
+reg card1_card_core1_regs_fifo2_sequencer2_bad_axes;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_header_bits;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_opcode;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_operand;
@@ -744,16 +743,14 @@ reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
 wire card1_card_core1_regs_fifo2_sequencer2_discard;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
-reg [2:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
 reg card1_card_core1_regs_fifo2_sequencer2_finishing;
 reg [16:0] card1_card_core1_regs_fifo2_sequencer2_header;
 wire card1_card_core1_regs_fifo2_sequencer2_issue;
-reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_high;
-reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mask_low;
+reg card1_card_core1_regs_fifo2_sequencer2_line_in;
 wire card1_card_core1_regs_fifo2_sequencer2_motion_done;
-reg [2:0] card1_card_core1_regs_fifo2_sequencer2_next_count;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_count;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
-reg card1_card_core1_regs_fifo2_sequencer2_next_known;
 reg card1_card_core1_regs_fifo2_sequencer2_next_motion;
 reg card1_card_core1_regs_fifo2_sequencer2_next_valid;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_opcode;
@@ -761,11 +758,24 @@ reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_0;
 reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
 reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
 reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
+reg [0:0] card1_card_core1_regs_fifo2_sequencer2_plane_u;
+reg [0:0] card1_card_core1_regs_fifo2_sequencer2_plane_v;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_slot_taken;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_slots_left;
 reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
+reg [0:0] card1_card_core1_regs_fifo2_sequencer2_arriving_u;
+reg [0:0] card1_card_core1_regs_fifo2_sequencer2_arriving_v;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_known;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
+reg card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
 wire card1_card_core1_regs_fifo2_sequencer2_dda_ready;
@@ -784,6 +794,15 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
+reg [0:0] card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u;
+reg [0:0] card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v;
+reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high;
+reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_ones;
+reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
 wire card1_card_core1_regs_fifo2_feed_rate2_advancing;
@@ -937,174 +956,183 @@ reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
 reg card1_card_core1_regs_fifo2_status_words2_low_before;
 wire [1:0] card1_card_core1_regs_fifo2_status_words2_words_quadrant;
-reg [4:0] card1_card_core1_dda_arc2_dda_setup2_acc_bits;
-reg card1_card_core1_dda_arc2_dda_setup2_carry;
-reg [48:0] card1_card_core1_dda_arc2_dda_setup2_gap;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_gap_op;
-reg card1_card_core1_dda_arc2_dda_setup2_grew;
-reg card1_card_core1_dda_arc2_dda_setup2_invert;
-reg card1_card_core1_dda_arc2_dda_setup2_m_is_y;
-reg [27:0] card1_card_core1_dda_arc2_dda_setup2_major;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_multiplier;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_next_square;
-reg [2:0] card1_card_core1_dda_arc2_dda_setup2_next_state;
-reg [4:0] card1_card_core1_dda_arc2_dda_setup2_next_step;
-reg [5:0] card1_card_core1_dda_arc2_dda_setup2_ones_left;
-reg [48:0] card1_card_core1_dda_arc2_dda_setup2_operand;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_operand_op;
-reg card1_card_core1_dda_arc2_dda_setup2_pick_x;
-reg [2:0] card1_card_core1_dda_arc2_dda_setup2_source;
-reg card1_card_core1_dda_arc2_dda_setup2_source_on;
-reg [24:0] card1_card_core1_dda_arc2_dda_setup2_source_value;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_square;
-reg [2:0] card1_card_core1_dda_arc2_dda_setup2_state;
-reg [4:0] card1_card_core1_dda_arc2_dda_setup2_step;
-wire [48:0] card1_card_core1_dda_arc2_dda_setup2_total;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
-reg [24:0] card1_card_core1_dda_arc2_dda_setup2_root_root;
-wire [47:0] card1_card_core1_dda_arc2_dda_setup2_root_radicand;
-wire card1_card_core1_dda_arc2_dda_setup2_root_load;
-reg card1_card_core1_dda_arc2_dda_setup2_root_grows;
-reg [27:0] card1_card_core1_dda_arc2_dda_setup2_plan_threshold;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_too_wide;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_off_circle;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y;
-reg [24:0] card1_card_core1_dda_arc2_dda_setup2_plan_radius;
-reg card1_card_core1_dda_arc2_dda_setup2_plan_beyond;
-reg signed [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
-reg [26:0] card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
-wire card1_card_core1_dda_arc2_dda_setup2_plan_done;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
-reg [23:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn;
-wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe;
-wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs;
-wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye;
-wire card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead;
-reg [2:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits;
-reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
-reg [47:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand;
-reg [25:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder;
-reg card1_card_core1_dda_arc2_dda_setup2_dda_root2_started;
-reg [4:0] card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps;
-wire card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken;
-reg [1:0] card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice;
-reg card1_card_core1_dda_arc2_dda_check2_variant_built;
-wire card1_card_core1_dda_arc2_dda_check2_move_offer;
-wire card1_card_core1_dda_arc2_dda_check2_move_take;
-reg card1_card_core1_dda_arc2_dda_check2_move_error;
-reg card1_card_core1_dda_arc2_dda_check2_move_zero;
-reg card1_card_core1_dda_arc2_dda_check2_move_line;
-reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_variant;
-reg card1_card_core1_dda_arc2_dda_check2_move_ccw;
-reg card1_card_core1_dda_arc2_dda_check2_move_blend;
-reg card1_card_core1_dda_arc2_dda_check2_move_right;
-reg card1_card_core1_dda_arc2_dda_check2_move_up;
-reg card1_card_core1_dda_arc2_dda_check2_move_x_inward;
-reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_quadrant;
-reg [2:0] card1_card_core1_dda_arc2_dda_check2_move_crossings;
-reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_target_x;
-reg [1:0] card1_card_core1_dda_arc2_dda_check2_move_target_y;
-reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_mag_x;
-reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_mag_y;
-reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_end_x;
-reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_end_y;
-reg [23:0] card1_card_core1_dda_arc2_dda_check2_move_radius;
-reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
-reg [26:0] card1_card_core1_dda_arc2_dda_check2_move_totals_max;
-reg [27:0] card1_card_core1_dda_arc2_dda_check2_move_threshold;
-reg signed [29:0] card1_card_core1_dda_arc2_dda_check2_move_acc_init;
-reg card1_card_core1_dda_arc2_dda_check2_move_acc_carry;
-reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_in;
-reg signed [26:0] card1_card_core1_dda_arc2_dda_check2_move_bias_out;
-reg signed [29:0] card1_card_core1_dda_arc2_dda_run2_acc_x;
-reg signed [29:0] card1_card_core1_dda_arc2_dda_run2_acc_y;
-reg card1_card_core1_dda_arc2_dda_run2_active;
-reg card1_card_core1_dda_arc2_dda_run2_ahead_x;
-reg card1_card_core1_dda_arc2_dda_run2_ahead_y;
-reg card1_card_core1_dda_arc2_dda_run2_at_x;
-reg card1_card_core1_dda_arc2_dda_run2_at_y;
-reg card1_card_core1_dda_arc2_dda_run2_ccw;
-reg [2:0] card1_card_core1_dda_arc2_dda_run2_crossings;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_end_x;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_end_y;
-reg card1_card_core1_dda_arc2_dda_run2_finished;
-reg card1_card_core1_dda_arc2_dda_run2_first;
-reg card1_card_core1_dda_arc2_dda_run2_go_x;
-reg card1_card_core1_dda_arc2_dda_run2_go_y;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_goal_x;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_goal_y;
-reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_x;
-reg [29:0] card1_card_core1_dda_arc2_dda_run2_kept_y;
-reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_x;
-reg [29:0] card1_card_core1_dda_arc2_dda_run2_less_y;
-reg card1_card_core1_dda_arc2_dda_run2_near_x;
-reg card1_card_core1_dda_arc2_dda_run2_near_y;
-reg card1_card_core1_dda_arc2_dda_run2_next_piece;
-reg card1_card_core1_dda_arc2_dda_run2_over_x;
-reg card1_card_core1_dda_arc2_dda_run2_over_y;
-reg [1:0] card1_card_core1_dda_arc2_dda_run2_quadrant;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_radius;
-reg card1_card_core1_dda_arc2_dda_run2_right;
-reg card1_card_core1_dda_arc2_dda_run2_saturate_x;
-reg card1_card_core1_dda_arc2_dda_run2_saturate_y;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_x;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_stepped_y;
-reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_x;
-reg [30:0] card1_card_core1_dda_arc2_dda_run2_sum_y;
-reg card1_card_core1_dda_arc2_dda_run2_tail;
-reg card1_card_core1_dda_arc2_dda_run2_tail_taken;
-wire card1_card_core1_dda_arc2_dda_run2_taking;
-reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_x;
-reg [1:0] card1_card_core1_dda_arc2_dda_run2_target_y;
-reg [27:0] card1_card_core1_dda_arc2_dda_run2_threshold;
-reg card1_card_core1_dda_arc2_dda_run2_threshold_carry;
-reg card1_card_core1_dda_arc2_dda_run2_up;
-reg [1:0] card1_card_core1_dda_arc2_dda_run2_variant;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_y;
-reg [23:0] card1_card_core1_dda_arc2_dda_run2_step_mag_x;
-reg card1_card_core1_dda_arc2_dda_run2_step_step_x;
-reg card1_card_core1_dda_arc2_dda_run2_step_step_y;
-reg card1_card_core1_dda_arc2_dda_run2_step_line;
-reg card1_card_core1_dda_arc2_dda_run2_step_x_inward;
-reg card1_card_core1_dda_arc2_dda_run2_step_outward_near;
-reg card1_card_core1_dda_arc2_dda_run2_step_inward_near;
-wire card1_card_core1_dda_arc2_dda_run2_step_last;
-reg card1_card_core1_dda_arc2_dda_run2_step_pending;
-reg card1_card_core1_dda_arc2_dda_run2_step_finished;
-reg card1_card_core1_dda_arc2_dda_run2_step_new_piece;
-reg card1_card_core1_dda_arc2_dda_run2_step_blend;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
-reg [26:0] card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term;
+reg [0:0] card1_card_core1_dda_axes1_u_run;
+reg [0:0] card1_card_core1_dda_axes1_v_run;
+reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_acc_bits;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_carry;
+reg [48:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap_op;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_grew;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_invert;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y;
+reg [27:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_major;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_multiplier;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_square;
+reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state;
+reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step;
+reg [5:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ones_left;
+reg [48:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand_op;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x;
+reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_on;
+reg [24:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_value;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square;
+reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state;
+reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step;
+wire [48:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye;
+reg [24:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root;
+wire [47:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_radicand;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_load;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_grows;
+reg [27:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_too_wide;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_y;
+reg [24:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_beyond;
+reg signed [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_diff;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_max;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_done;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_end_odd;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_turn;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ahead;
+reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_centre;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_all_ones;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits;
+reg [25:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_keep;
+reg [47:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_radicand;
+reg [25:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_remainder;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started;
+reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_sequence2_plan_taken;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_offer;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_error;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_zero;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_line;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_variant;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_ccw;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_blend;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_right;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_up;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_x_inward;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_quadrant;
+reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_crossings;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_x;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_y;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_x;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_y;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_end_x;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_end_y;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_radius;
+reg signed [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_totals_diff;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_totals_max;
+reg [27:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_threshold;
+reg signed [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_init;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_carry;
+reg signed [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_bias_in;
+reg signed [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_bias_out;
+reg signed [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x;
+reg signed [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_active;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_ccw;
+reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_x;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_finished;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_first;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y;
+reg [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_x;
+reg [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_y;
+reg [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_less_x;
+reg [29:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_less_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_next_piece;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_radius;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_right;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_y;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_stepped_x;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_stepped_y;
+reg [30:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x;
+reg [30:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail_taken;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y;
+reg [27:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold_carry;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_up;
+reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y;
+reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_outward_near;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_step;
+reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term;
+reg [1:0] card1_card_core1_dda_axes1__plane_queue1_moves;
+reg [0:0] card1_card_core1_dda_axes1__plane_queue1_u_next;
+reg [0:0] card1_card_core1_dda_axes1__plane_queue1_v_next;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
@@ -5255,29 +5283,117 @@ assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_arriving
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 2;
-        2: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 4;
-        3: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 2;
-        4: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 1;
-        5: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 1;
-        6: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        7: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_arriving_count = 0;
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 4;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
     endcase
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_arriving_kind
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 2;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 2;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
+    endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
+    endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
+    endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup24_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
+    endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup25_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 1;
@@ -5299,98 +5415,250 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_count
-    case (card1_card_core1_regs_fifo2_sequencer2_opcode)
-        0: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_next_count = 2;
-        2: card1_card_core1_regs_fifo2_sequencer2_next_count = 4;
-        3: card1_card_core1_regs_fifo2_sequencer2_next_count = 2;
-        4: card1_card_core1_regs_fifo2_sequencer2_next_count = 1;
-        5: card1_card_core1_regs_fifo2_sequencer2_next_count = 1;
-        6: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        7: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_next_count = 0;
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup26_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
     endcase
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_valid
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup27_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
-        2: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
-        3: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
-        4: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
-        5: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
-        6: card1_card_core1_regs_fifo2_sequencer2_next_known = 1;
-        7: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_next_known = 0;
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62449;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62463;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62448;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
     endcase
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_high
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup28_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61441;
-        2: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61441;
-        3: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
-        4: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
-        5: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
-        6: card1_card_core1_regs_fifo2_sequencer2_mask_high = 61440;
-        7: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_mask_high = 0;
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 65535;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 15;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 65535;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
     endcase
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_mask_low
-    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        2: card1_card_core1_regs_fifo2_sequencer2_mask_low = 8191;
-        3: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        4: card1_card_core1_regs_fifo2_sequencer2_mask_low = 15;
-        5: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        6: card1_card_core1_regs_fifo2_sequencer2_mask_low = 65535;
-        7: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_mask_low = 0;
+always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup29_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[26-1:20])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 0;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        15: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        16: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
+        17: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        18: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        19: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        20: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        21: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        22: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        23: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        24: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        25: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        26: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        27: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        28: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        29: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        30: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        31: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 5;
+        32: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
+        33: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        34: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        35: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        36: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        37: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        38: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        39: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        40: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        41: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        42: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        43: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        44: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        45: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        46: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        47: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 5;
+        48: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 2;
+        49: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        50: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        51: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        52: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        53: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        54: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        55: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 5;
+        56: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 3;
+        57: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        58: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        59: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 5;
+        60: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 4;
+        61: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 5;
+        62: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 5;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 6;
     endcase
+end
+
+
+always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes, card1_card_core1_regs_fifo2_sequencer2_command_header2_ones, card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high, card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low, card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count, card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_frame
+    card1_card_core1_regs_fifo2_sequencer2_arriving_operands = card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
+    if (card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes) begin
+        if ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] == 0)) begin
+            card1_card_core1_regs_fifo2_sequencer2_arriving_operands = (card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count + card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_sequencer2_arriving_operands = ((card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count + card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count) + card1_card_core1_regs_fifo2_sequencer2_command_header2_ones);
+        end
+    end
+    card1_card_core1_regs_fifo2_sequencer2_arriving_reserved = (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low)) != 0));
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_check_axes
+    card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = 1'b0;
+    if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1)) begin
+        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] & 60) != 0);
+    end
+    else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3)) begin
+        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) && (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 3));
+    end
+    else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2)) begin
+        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] >= 2) || (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] >= 2) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == card1_card_core1_regs_fifo2_fifo_dout[20-1:17]) && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)) || (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_plane
+    card1_card_core1_regs_fifo2_sequencer2_arriving_u = card1_card_core1_regs_fifo2_fifo_dout[13+:1];
+    card1_card_core1_regs_fifo2_sequencer2_arriving_v = card1_card_core1_regs_fifo2_fifo_dout[17+:1];
+    if (((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == 0) && (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] == 0))) begin
+        card1_card_core1_regs_fifo2_sequencer2_arriving_v = 1;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_slots
+    card1_card_core1_regs_fifo2_sequencer2_arriving_slots = 15;
+    if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1)) begin
+        if ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] == 0)) begin
+            card1_card_core1_regs_fifo2_sequencer2_arriving_slots = 3;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_sequencer2_arriving_slots = card1_card_core1_regs_fifo2_fifo_dout[20+:4];
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register8_hold
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[0]) begin
+            card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout[32-1:0];
+        end
+        else if (card1_card_core1_regs_fifo2_sequencer2_line_in) begin
+            card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register9_hold
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[1]) begin
+            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
+        end
+        else if (card1_card_core1_regs_fifo2_sequencer2_line_in) begin
+            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register10_hold
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[2]) begin
+            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
+        end
+    end
+end
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register11_hold
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[3]) begin
+            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
+        end
+    end
 end
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
     case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 3;
+        1: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 15;
         2: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 15;
         3: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
         4: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
@@ -5414,7 +5682,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_
         0: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         2: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
-        3: card1_card_core1_regs_fifo2_sequencer2_count_mask = 3;
+        3: card1_card_core1_regs_fifo2_sequencer2_count_mask = 15;
         4: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         5: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
         6: card1_card_core1_regs_fifo2_sequencer2_count_mask = 0;
@@ -5463,18 +5731,35 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_arriving_count, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
+always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands, card1_card_core1_regs_fifo2_sequencer2_state, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer2_next_valid, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_next_count, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_fetch_request
     reg more;
     more = 1'b1;
     if (card1_card_core1_regs_fifo2_sequencer2_word_due) begin
         if ((card1_card_core1_regs_fifo2_sequencer2_fetched == 0)) begin
-            more = (card1_card_core1_regs_fifo2_sequencer2_arriving_count != 0);
+            more = (card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands == 1);
         end
         else begin
             more = (card1_card_core1_regs_fifo2_sequencer2_fetched < card1_card_core1_regs_fifo2_sequencer2_next_count);
         end
     end
     card1_card_core1_regs_fifo2_fifo_pop = ((!card1_card_core1_regs_fifo2_fifo_empty) && (!card1_card_core1_regs_fifo2_sequencer2_next_valid) && more && (!card1_card_core1_regs_fifo2_sequencer_clear) && (card1_card_core1_regs_fifo2_sequencer2_state != 3'b100));
+end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
+    reg [4-1:0] taken;
+    integer index;
+    card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+    taken = 4'h0;
+    if ((card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched != 0) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard))) begin
+        for (index=4-1; index>=0; index=index-1) begin
+            if (card1_card_core1_regs_fifo2_sequencer2_slots_left[index]) begin
+                taken = 0;
+                taken[index] = 1;
+            end
+        end
+    end
+    card1_card_core1_regs_fifo2_sequencer2_slot_taken = taken;
 end
 
 
@@ -5485,21 +5770,22 @@ assign card1_card_core1_regs_fifo2_sequencer2_discard = (card1_card_core1_regs_f
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_fetch
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_axes <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_variant <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_plane_u <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_motion <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_slots_left <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= 0;
         card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_plane_v <= 1;
         card1_card_core1_regs_fifo2_sequencer2_header <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= 0;
         card1_card_core1_regs_fifo2_sequencer2_opcode <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_next_count <= 0;
         card1_card_core1_regs_fifo2_sequencer2_fetched <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_sequencer2_word_due <= card1_card_core1_regs_fifo2_fifo_pop;
@@ -5517,12 +5803,17 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                     card1_card_core1_regs_fifo2_sequencer2_opcode <= card1_card_core1_regs_fifo2_fifo_dout[32-1:28];
                     card1_card_core1_regs_fifo2_sequencer2_header <= card1_card_core1_regs_fifo2_fifo_dout[17-1:0];
                     card1_card_core1_regs_fifo2_sequencer2_next_motion <= card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
-                    card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_next_known);
-                    card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_mask_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_mask_low)) != 0));
+                    card1_card_core1_regs_fifo2_sequencer2_next_count <= card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
+                    card1_card_core1_regs_fifo2_sequencer2_slots_left <= card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
+                    card1_card_core1_regs_fifo2_sequencer2_plane_u <= card1_card_core1_regs_fifo2_sequencer2_arriving_u;
+                    card1_card_core1_regs_fifo2_sequencer2_plane_v <= card1_card_core1_regs_fifo2_sequencer2_arriving_v;
+                    card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_arriving_known);
+                    card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
+                    card1_card_core1_regs_fifo2_sequencer2_bad_axes <= card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range;
                     card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 4) && (!card1_card_core1_regs_fifo2_sequencer2_set_known));
                     card1_card_core1_regs_fifo2_sequencer2_bad_variant <= ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2) && (!card1_card_core1_regs_fifo2_sequencer2_variant_built));
                     card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
-                    if ((card1_card_core1_regs_fifo2_sequencer2_arriving_count == 0)) begin
+                    if ((!card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands)) begin
                         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 1;
                     end
                     else begin
@@ -5530,21 +5821,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                     end
                 end
                 else begin
-                    case (card1_card_core1_regs_fifo2_sequencer2_fetched)
-                        'h1: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout;
-                        end
-                        'h2: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
-                        end
-                        'h3: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
-                        end
-                        default: begin
-                            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
-                        end
-                    endcase
-                    if (((card1_card_core1_regs_fifo2_sequencer2_coord_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits)) || (card1_card_core1_regs_fifo2_sequencer2_count_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits)))) begin
+                    card1_card_core1_regs_fifo2_sequencer2_slots_left <= (card1_card_core1_regs_fifo2_sequencer2_slots_left & (~card1_card_core1_regs_fifo2_sequencer2_slot_taken));
+                    if (((card1_card_core1_regs_fifo2_sequencer2_fetched <= 4) && ((card1_card_core1_regs_fifo2_sequencer2_coord_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits)) || (card1_card_core1_regs_fifo2_sequencer2_count_mask[($signed({1'b0, card1_card_core1_regs_fifo2_sequencer2_fetched}) - 1)] && (!card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits))))) begin
                         card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 1;
                     end
                     if ((card1_card_core1_regs_fifo2_sequencer2_fetched == card1_card_core1_regs_fifo2_sequencer2_next_count)) begin
@@ -5561,7 +5839,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin: card1_card_core1_regs_fifo2_sequencer2_check
+always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits, card1_card_core1_regs_fifo2_sequencer2_bad_axes) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -5571,7 +5849,7 @@ always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_re
     else if (card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin
         result = 2;
     end
-    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand || card1_card_core1_regs_fifo2_sequencer2_bad_variant)) begin
+    else if ((card1_card_core1_regs_fifo2_sequencer2_bad_set_index || card1_card_core1_regs_fifo2_sequencer2_bad_operand || card1_card_core1_regs_fifo2_sequencer2_bad_variant || card1_card_core1_regs_fifo2_sequencer2_bad_axes)) begin
         result = 3;
     end
     card1_card_core1_regs_fifo2_sequencer2_next_error = result;
@@ -5701,7 +5979,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs_fifo2_sequencer2_operand_3, card1_card_core1_regs_fifo2_sequencer2_operand_1, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_operand_2) begin: card1_card_core1_regs_fifo2_sequencer2_present
+always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs_fifo2_sequencer2_plane_u, card1_card_core1_regs_fifo2_sequencer2_operand_3, card1_card_core1_regs_fifo2_sequencer2_operand_1, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_plane_v, card1_card_core1_regs_fifo2_sequencer2_operand_2) begin: card1_card_core1_regs_fifo2_sequencer2_present
     card1_card_core1_regs_fifo2_sequencer2_dda_line = (card1_card_core1_regs_fifo2_sequencer2_opcode == 1);
     card1_card_core1_regs_fifo2_sequencer2_dda_ccw = card1_card_core1_regs_fifo2_sequencer2_header[0];
     card1_card_core1_regs_fifo2_sequencer2_dda_blend = card1_card_core1_regs_fifo2_sequencer2_header[16];
@@ -5725,6 +6003,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
     card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
     card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
     card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
+    card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u = card1_card_core1_regs_fifo2_sequencer2_plane_u;
+    card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v = card1_card_core1_regs_fifo2_sequencer2_plane_v;
 end
 
 
@@ -7182,7 +7462,7 @@ assign card1_card_core1_regs_fifo2_reg_word86_shown = card1_card_core1_regs_fifo
 assign card1_card_core1_regs_fifo2_reg_word87_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_magnitudes
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_magnitudes
     reg [24-1:0] sign_xs;
     reg [24-1:0] sign_ys;
     reg [24-1:0] sign_xe;
@@ -7215,280 +7495,280 @@ always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fi
     less_ys = (card1_card_core1_regs_fifo2_sequencer2_dda_ys[24-1:0] + sign_ys);
     less_xe = (card1_card_core1_regs_fifo2_sequencer2_dda_xe[24-1:0] + sign_xe);
     less_ye = (card1_card_core1_regs_fifo2_sequencer2_dda_ye[24-1:0] + sign_ye);
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs = (less_xs ^ sign_xs);
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys = (less_ys ^ sign_ys);
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe = (less_xe ^ sign_xe);
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye = (less_ye ^ sign_ye);
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xs = (less_xs ^ sign_xs);
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_ys = (less_ys ^ sign_ys);
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xe = (less_xe ^ sign_xe);
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_ye = (less_ye ^ sign_ye);
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_latch
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_latch
     if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
-        card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line <= card1_card_core1_regs_fifo2_sequencer2_dda_line;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant <= card1_card_core1_regs_fifo2_sequencer2_dda_variant;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw <= card1_card_core1_regs_fifo2_sequencer2_dda_ccw;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_blend <= card1_card_core1_regs_fifo2_sequencer2_dda_blend;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs <= (card1_card_core1_regs_fifo2_sequencer2_dda_xs < 0);
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys <= (card1_card_core1_regs_fifo2_sequencer2_dda_ys < 0);
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe <= (card1_card_core1_regs_fifo2_sequencer2_dda_xe < 0);
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye <= (card1_card_core1_regs_fifo2_sequencer2_dda_ye < 0);
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xs;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_ys;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_ye;
     end
 end
 
 
 
-assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs == 0);
-assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys == 0);
-assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe == 0);
-assign card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye = (card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye == 0);
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs == 0);
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys == 0);
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe == 0);
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye == 0);
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_quadrants
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_quadrants
     reg [2-1:0] q_s;
     reg [2-1:0] q_e;
     q_s = 2'h0;
     q_e = 2'h0;
-    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw) begin
+        if (((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
             q_s = 0;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
+        else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 1;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
+        if (((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 0;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
             q_e = 1;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
+        else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye)) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn = (q_e - q_s);
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_turn = (q_e - q_s);
     end
     else begin
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
+        if (((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys))) begin
             q_s = 0;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys))) begin
             q_s = 1;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
+        else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_xs || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_neg_ys)) begin
             q_s = 2;
         end
         else begin
             q_s = 3;
         end
-        if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
+        if (((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye))) begin
             q_e = 0;
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
+        else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 1;
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye))) begin
             q_e = 2;
         end
         else begin
             q_e = 3;
         end
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn = (q_s - q_e);
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_turn = (q_s - q_e);
     end
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant = q_s;
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd = q_e[0];
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_start_quadrant = q_s;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_end_odd = q_e[0];
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_latch2_geometry
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_geometry
     reg ahead;
     ahead = 1'b0;
-    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
-        ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y));
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw)) begin
+        ahead = ((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_x) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_y || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_y));
     end
     else begin
-        ahead = ((!card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x));
+        ahead = ((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_y) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_x || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x));
     end
-    ahead = (ahead && (!(card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y)) && (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn == 0));
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= {1'b0, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn};
-    if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_turn == 0) && (!ahead))) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= 4;
+    ahead = (ahead && (!(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_y)) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_turn == 0));
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ahead <= ahead;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= {1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_turn};
+    if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_turn == 0) && (!ahead))) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings <= 4;
     end
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
-    card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_end_odd != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
-    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye);
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_start_quadrant;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_start_quadrant[0] != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_end_odd != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw);
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye);
     end
     else begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xs && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ys) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_zero_ye));
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_centre <= ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xs && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ys) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_xe && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_zero_ye));
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand, card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_arc2_dda_setup2_root_root) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_trial
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_radicand, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_trial
     reg [28-1:0] value;
     reg [27-1:0] difference;
     value = 28'h0;
     difference = 27'h0;
-    value = {card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
-    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], 2'h1});
-    card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
-    card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep = value[(24 + 2)-1:0];
+    value = {card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_remainder, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_radicand[(2 * 24)-1:((2 * 24) - 2)]};
+    difference = ({1'b0, value[(24 + 2)-1:0]} - {1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root[24-1:0], 2'h1});
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits = ((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]));
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_keep = value[(24 + 2)-1:0];
     if (((value[(24 + 4)-1:(24 + 2)] != 0) || (!difference[(24 + 2)]))) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep = difference[(24 + 2)-1:0];
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_keep = difference[(24 + 2)-1:0];
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps, card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones, card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits, card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_length
-    card1_card_core1_dda_arc2_dda_setup2_root_grows = 1'b0;
-    if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps > 1)) begin
-        card1_card_core1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started || card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits);
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_all_ones, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_length
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_grows = 1'b0;
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps > 1)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits);
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps == 1)) begin
-        card1_card_core1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits && card1_card_core1_dda_arc2_dda_setup2_dda_root2_started && card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones);
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps == 1)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_grows = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_all_ones);
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_count
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_count
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps <= 0;
     end
     else begin
-        if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (24 + 1);
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_load) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps <= (24 + 1);
         end
-        else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps - 1);
-        end
-    end
-end
-
-
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_dda_root2_digits
-    if (card1_card_core1_dda_arc2_dda_setup2_root_load) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= card1_card_core1_dda_arc2_dda_setup2_root_radicand;
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_root_root <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b0;
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b1;
-    end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_remainder <= card1_card_core1_dda_arc2_dda_setup2_dda_root2_keep;
-        card1_card_core1_dda_arc2_dda_setup2_root_root <= {card1_card_core1_dda_arc2_dda_setup2_root_root[24-1:0], card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits};
-        card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand <= (card1_card_core1_dda_arc2_dda_setup2_dda_root2_radicand << 2);
-        if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_fits) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_started <= 1'b1;
-        end
-        else if (card1_card_core1_dda_arc2_dda_setup2_dda_root2_started) begin
-            card1_card_core1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b0;
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps - 1);
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_advance
-    card1_card_core1_dda_arc2_dda_setup2_next_state = card1_card_core1_dda_arc2_dda_setup2_state;
-    card1_card_core1_dda_arc2_dda_setup2_next_step = 0;
-    card1_card_core1_dda_arc2_dda_setup2_next_square = card1_card_core1_dda_arc2_dda_setup2_square;
-    if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
-        card1_card_core1_dda_arc2_dda_setup2_next_square = 0;
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_digits
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_load) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_radicand <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_radicand;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_remainder <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started <= 1'b0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b1;
+    end
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_steps != 0)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_remainder <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_keep;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root <= {card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root[24-1:0], card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits};
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_radicand <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_radicand << 2);
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_fits) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started <= 1'b1;
+        end
+        else if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_started) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_root2_all_ones <= 1'b0;
+        end
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_sequencer2_dda_start, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_sequence2_plan_taken, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step, card1_card_core1_regs_fifo2_sequencer2_dda_line, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_sequence2_advance
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step = 0;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_square = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square;
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b000)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_square = 0;
         if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
-            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b010;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b010;
             if (card1_card_core1_regs_fifo2_sequencer2_dda_line) begin
-                card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b001;
+                card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b001;
             end
         end
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
-        card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b110;
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b001)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b110;
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010)) begin
-        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (7 - 1))) begin
-            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b011;
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b010)) begin
+        if (($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (7 - 1))) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b011;
         end
         else begin
-            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step + 1);
         end
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011)) begin
-        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
-            card1_card_core1_dda_arc2_dda_setup2_next_square = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
-            if ((card1_card_core1_dda_arc2_dda_setup2_square == 3)) begin
-                card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b100;
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b011)) begin
+        if (($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_square = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square + 1);
+            if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square == 3)) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b100;
             end
         end
         else begin
-            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step + 1);
         end
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b100)) begin
-        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (5 - 1))) begin
-            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b101;
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b100)) begin
+        if (($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (5 - 1))) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b101;
         end
         else begin
-            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step + 1);
         end
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b101)) begin
-        if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (13 - 1))) begin
-            card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b110;
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b101)) begin
+        if (($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (13 - 1))) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b110;
         end
         else begin
-            card1_card_core1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_arc2_dda_setup2_step + 1);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step + 1);
         end
     end
-    else if (card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken) begin
-        card1_card_core1_dda_arc2_dda_setup2_next_state = 3'b000;
+    else if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_sequence2_plan_taken) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state = 3'b000;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_operations
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_multiplier, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_operations
     reg [2-1:0] g_op;
     reg [2-1:0] o_op;
     g_op = 2'h0;
     o_op = 2'h0;
     g_op = 0;
     o_op = 2;
-    case (card1_card_core1_dda_arc2_dda_setup2_state)
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state)
         3'b010: begin
-            if ((card1_card_core1_dda_arc2_dda_setup2_step == 4)) begin
+            if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4)) begin
                 g_op = 2;
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 6)) begin
                 g_op = 3;
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step != 0)) begin
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step != 0)) begin
                 g_op = 1;
             end
         end
         3'b011: begin
             o_op = 1;
-            if (card1_card_core1_dda_arc2_dda_setup2_multiplier[0]) begin
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_multiplier[0]) begin
                 g_op = 1;
             end
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+            if (($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
                 o_op = 2;
             end
         end
         3'b100: begin
             o_op = 1;
-            case (card1_card_core1_dda_arc2_dda_setup2_step)
+            case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
                 'h1: begin
                     g_op = 1;
                     o_op = 2;
@@ -7501,7 +7781,7 @@ always @(card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dd
         end
         3'b101: begin
             g_op = 1;
-            case (card1_card_core1_dda_arc2_dda_setup2_step)
+            case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
                 'h1: begin
                     g_op = 0;
                     o_op = 1;
@@ -7522,65 +7802,65 @@ always @(card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dd
             o_op = 0;
         end
     endcase
-    card1_card_core1_dda_arc2_dda_setup2_gap_op = g_op;
-    card1_card_core1_dda_arc2_dda_setup2_operand_op = o_op;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap_op = g_op;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand_op = o_op;
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice, card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_operand_source
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_operand_source
     reg [3-1:0] src;
     reg on;
     src = 3'h0;
     on = 1'b1;
     src = 0;
-    case (card1_card_core1_dda_arc2_dda_setup2_state)
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state)
         3'b010: begin
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 4))) begin
+            if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4))) begin
                 src = 1;
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 3)) begin
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 3)) begin
                 src = 2;
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step != 0) && (card1_card_core1_dda_arc2_dda_setup2_step != 6))) begin
+            else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step != 0) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step != 6))) begin
                 src = 3;
             end
         end
         3'b011: begin
-            if ((($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1)) && (card1_card_core1_dda_arc2_dda_setup2_square != 3))) begin
-                src = (card1_card_core1_dda_arc2_dda_setup2_square + 1);
+            if ((($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (24 - 1)) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square != 3))) begin
+                src = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square + 1);
             end
-            else if ((($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1)) && card1_card_core1_dda_arc2_dda_setup2_m_is_y)) begin
+            else if ((($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (24 - 1)) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y)) begin
                 src = 1;
             end
         end
         3'b100: begin
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 1) && card1_card_core1_dda_arc2_dda_setup2_m_is_y)) begin
+            if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 1) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y)) begin
                 src = 1;
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 4)) begin
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4)) begin
                 src = 4;
             end
         end
         3'b101: begin
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 5) || ((card1_card_core1_dda_arc2_dda_setup2_step == 9) && (!card1_card_core1_dda_arc2_dda_setup2_pick_x)))) begin
+            if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 5) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 9) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x)))) begin
                 src = 3;
             end
-            if ((((card1_card_core1_dda_arc2_dda_setup2_step == 0) && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end) || (card1_card_core1_dda_arc2_dda_setup2_step == 4) || ((card1_card_core1_dda_arc2_dda_setup2_step == 9) && card1_card_core1_dda_arc2_dda_setup2_pick_x))) begin
+            if ((((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 0) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 9) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x))) begin
                 src = 2;
             end
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 3) || ((card1_card_core1_dda_arc2_dda_setup2_step == 8) && (!card1_card_core1_dda_arc2_dda_setup2_pick_x)))) begin
+            if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 3) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 8) && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x)))) begin
                 src = 1;
             end
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 6) || (card1_card_core1_dda_arc2_dda_setup2_step >= 10))) begin
+            if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 6) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step >= 10))) begin
                 src = 4;
             end
-            if ((card1_card_core1_dda_arc2_dda_setup2_step == 6)) begin
-                on = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
+            if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 6)) begin
+                on = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step >= 10)) begin
-                on = (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice != 0);
-                if ((card1_card_core1_dda_arc2_dda_setup2_step == 11)) begin
-                    on = (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice == 2);
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step >= 10)) begin
+                on = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice != 0);
+                if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 11)) begin
+                    on = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice == 2);
                 end
             end
         end
@@ -7588,413 +7868,413 @@ always @(card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice, card1_ca
             src = 0;
         end
     endcase
-    card1_card_core1_dda_arc2_dda_setup2_source = src;
-    card1_card_core1_dda_arc2_dda_setup2_source_on = on;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source = src;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_on = on;
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_step, card1_card_core1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_square, card1_card_core1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_inversion
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_inversion
     reg inv;
     inv = 1'b0;
-    case (card1_card_core1_dda_arc2_dda_setup2_state)
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state)
         3'b010: begin
-            inv = ((card1_card_core1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_step == 6));
+            inv = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 1) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 3) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 5) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 6));
         end
         3'b011: begin
-            inv = (card1_card_core1_dda_arc2_dda_setup2_square < 2);
-            if (($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
-                inv = ((card1_card_core1_dda_arc2_dda_setup2_square == 0) || (card1_card_core1_dda_arc2_dda_setup2_square == 3));
+            inv = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square < 2);
+            if (($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) == (24 - 1))) begin
+                inv = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square == 0) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square == 3));
             end
         end
         3'b100: begin
-            inv = (card1_card_core1_dda_arc2_dda_setup2_step == 0);
+            inv = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 0);
         end
         3'b101: begin
-            if (((card1_card_core1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_arc2_dda_setup2_step == 1))) begin
+            if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 0) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 1))) begin
                 inv = 1'b1;
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_step == 3) || ((card1_card_core1_dda_arc2_dda_setup2_step == 8) && card1_card_core1_dda_arc2_dda_setup2_pick_x))) begin
-                inv = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
+            else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 2) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 3) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 8) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x))) begin
+                inv = (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 4) || (card1_card_core1_dda_arc2_dda_setup2_step == 5) || ((card1_card_core1_dda_arc2_dda_setup2_step == 9) && card1_card_core1_dda_arc2_dda_setup2_pick_x))) begin
-                inv = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == 1);
+            else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 5) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 9) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x))) begin
+                inv = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == 1);
             end
-            else if (((card1_card_core1_dda_arc2_dda_setup2_step == 6) || (card1_card_core1_dda_arc2_dda_setup2_step == 8))) begin
-                inv = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward == 1);
+            else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 6) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 8))) begin
+                inv = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward == 1);
             end
-            else if ((card1_card_core1_dda_arc2_dda_setup2_step == 9)) begin
-                inv = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 9)) begin
+                inv = (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
             end
         end
         default: begin
             inv = 1'b0;
         end
     endcase
-    card1_card_core1_dda_arc2_dda_setup2_invert = inv;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_invert = inv;
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_carry_in
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_carry_in
     reg cin;
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_carry <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_carry <= 0;
     end
     else begin
         cin = 1'b0;
-        case (card1_card_core1_dda_arc2_dda_setup2_next_state)
+        case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state)
             3'b010: begin
-                cin = ((card1_card_core1_dda_arc2_dda_setup2_next_step == 2) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6));
+                cin = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 2) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 4) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 6));
             end
             3'b011: begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_next_square < 2);
+                cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_square < 2);
             end
             3'b100: begin
-                cin = (card1_card_core1_dda_arc2_dda_setup2_next_step == 4);
+                cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 4);
             end
             3'b101: begin
-                if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 0)) begin
+                if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 0)) begin
                     cin = 1'b1;
                 end
-                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 2)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] == 1);
+                else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 2)) begin
+                    cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root[0] == 1);
                 end
-                else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 3) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 4))) begin
-                    cin = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
+                else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 3) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 4))) begin
+                    cin = (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
                 end
-                else if (((card1_card_core1_dda_arc2_dda_setup2_next_step == 5) || (card1_card_core1_dda_arc2_dda_setup2_next_step == 6))) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == 1);
+                else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 5) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 6))) begin
+                    cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == 1);
                 end
-                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 7)) begin
-                    cin = ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end) && (card1_card_core1_dda_arc2_dda_setup2_root_root[0] != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward));
+                else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 7)) begin
+                    cin = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root[0] != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward));
                 end
-                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 9)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
+                else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 9)) begin
+                    cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward);
                 end
-                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 10)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
+                else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 10)) begin
+                    cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x == card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end);
                 end
-                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 11)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice != 0));
+                else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 11)) begin
+                    cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice != 0));
                 end
-                else if ((card1_card_core1_dda_arc2_dda_setup2_next_step == 12)) begin
-                    cin = (card1_card_core1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice == 2));
+                else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step == 12)) begin
+                    cin = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root[0] && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice == 2));
                 end
             end
             default: begin
                 cin = 1'b0;
             end
         endcase
-        card1_card_core1_dda_arc2_dda_setup2_carry <= cin;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_carry <= cin;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_arc2_dda_setup2_pick_x) begin: card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_rq_terms
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_rq_terms
     reg [3-1:0] count;
     count = 3'h0;
-    count = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings - 1);
-    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
+    count = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings - 1);
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward != card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x)) begin
         count = (count + 1);
     end
-    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == card1_card_core1_dda_arc2_dda_setup2_pick_x)) begin
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward_end == card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x)) begin
         count = (count + 1);
     end
-    card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice = count[3-1:1];
-    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings == 0)) begin
-        card1_card_core1_dda_arc2_dda_setup2_dda_setup_control2_twice = 0;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice = count[3-1:1];
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings == 0)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_setup_control2_twice = 0;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_source, card1_card_core1_dda_arc2_dda_setup2_root_root, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye, card1_card_core1_dda_arc2_dda_setup2_source_on) begin: card1_card_core1_dda_arc2_dda_setup2_select_source
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_on) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_select_source
     reg [25-1:0] value;
     value = 25'h0;
-    case (card1_card_core1_dda_arc2_dda_setup2_source)
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source)
         'h0: begin
-            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
+            value = {1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs};
         end
         'h1: begin
-            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+            value = {1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys};
         end
         'h2: begin
-            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe};
+            value = {1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe};
         end
         'h3: begin
-            value = {1'b0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye};
+            value = {1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye};
         end
         default: begin
-            value = card1_card_core1_dda_arc2_dda_setup2_root_root;
+            value = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_root;
         end
     endcase
-    if ((!card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
+    if ((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_on)) begin
         value = 0;
     end
-    card1_card_core1_dda_arc2_dda_setup2_source_value = value;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_value = value;
 end
 
 
 
-assign card1_card_core1_dda_arc2_dda_setup2_total = ((card1_card_core1_dda_arc2_dda_setup2_gap + card1_card_core1_dda_arc2_dda_setup2_operand) + {48'h0, card1_card_core1_dda_arc2_dda_setup2_carry});
-assign card1_card_core1_dda_arc2_dda_setup2_root_radicand = (~card1_card_core1_dda_arc2_dda_setup2_gap[(2 * 24)-1:0]);
-assign card1_card_core1_dda_arc2_dda_setup2_root_load = ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_square == 2) && (card1_card_core1_dda_arc2_dda_setup2_step == 0));
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap + card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand) + {48'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_carry});
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_radicand = (~card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap[(2 * 24)-1:0]);
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_load = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square == 2) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 0));
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_datapath
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_datapath
     reg [49-1:0] loaded;
     loaded = 49'h0;
-    case (card1_card_core1_dda_arc2_dda_setup2_gap_op)
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap_op)
         'h1: begin
-            card1_card_core1_dda_arc2_dda_setup2_gap <= card1_card_core1_dda_arc2_dda_setup2_total;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total;
         end
         'h2: begin
-            card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap <= 0;
         end
         'h3: begin
-            card1_card_core1_dda_arc2_dda_setup2_gap <= ((1 << 49) - 1);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap <= ((1 << 49) - 1);
         end
     endcase
-    case (card1_card_core1_dda_arc2_dda_setup2_operand_op)
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand_op)
         'h1: begin
-            card1_card_core1_dda_arc2_dda_setup2_operand <= {card1_card_core1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], card1_card_core1_dda_arc2_dda_setup2_invert};
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand <= {card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand[(49 - 1)-1:0], card1_card_core1_dda_axes1_dda_arc2_dda_setup2_invert};
         end
         'h2: begin
-            loaded = {24'h0, card1_card_core1_dda_arc2_dda_setup2_source_value};
-            if ((card1_card_core1_dda_arc2_dda_setup2_invert && card1_card_core1_dda_arc2_dda_setup2_source_on)) begin
+            loaded = {24'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_value};
+            if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_invert && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_on)) begin
                 loaded = (~loaded);
             end
-            card1_card_core1_dda_arc2_dda_setup2_operand <= loaded;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand <= loaded;
         end
     endcase
-    if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && ($signed({1'b0, card1_card_core1_dda_arc2_dda_setup2_step}) != (24 - 1)))) begin
-        card1_card_core1_dda_arc2_dda_setup2_multiplier <= (card1_card_core1_dda_arc2_dda_setup2_multiplier >>> 1);
+    if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b011) && ($signed({1'b0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step}) != (24 - 1)))) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_multiplier <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_multiplier >>> 1);
     end
-    else if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b010) || (card1_card_core1_dda_arc2_dda_setup2_state == 3'b011))) begin
-        card1_card_core1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_arc2_dda_setup2_source_value[24-1:0];
+    else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b010) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b011))) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_multiplier <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_source_value[24-1:0];
     end
-    if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000)) begin
-        card1_card_core1_dda_arc2_dda_setup2_gap <= 0;
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b000)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap <= 0;
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_setup2_sequencer
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_sequencer
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_setup2_step <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_square <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_state <= 3'b000;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state <= 3'b000;
     end
     else begin
-        card1_card_core1_dda_arc2_dda_setup2_state <= card1_card_core1_dda_arc2_dda_setup2_next_state;
-        card1_card_core1_dda_arc2_dda_setup2_step <= card1_card_core1_dda_arc2_dda_setup2_next_step;
-        card1_card_core1_dda_arc2_dda_setup2_square <= card1_card_core1_dda_arc2_dda_setup2_next_square;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_state;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_step;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_next_square;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_arc2_dda_setup2_line_major
-    card1_card_core1_dda_arc2_dda_setup2_major = {4'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye};
-    if ((card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe >= card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye)) begin
-        card1_card_core1_dda_arc2_dda_setup2_major = {4'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe};
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_line_major
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_major = {4'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye};
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe >= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_major = {4'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe};
     end
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_threshold
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_threshold
     reg shift;
     shift = 1'b0;
-    card1_card_core1_dda_arc2_dda_setup2_grew <= card1_card_core1_dda_arc2_dda_setup2_root_grows;
-    if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= 0;
-        card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b0;
-        card1_card_core1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
+    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_grew <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_grows;
+    if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b000) && card1_card_core1_regs_fifo2_sequencer2_dda_start)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_too_wide <= 1'b0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_acc_bits <= card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits;
         if ((card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits != 0)) begin
-            card1_card_core1_dda_arc2_dda_setup2_ones_left <= ({1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits} + {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift});
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ones_left <= ({1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_acc_bits} + {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift});
         end
         else begin
-            card1_card_core1_dda_arc2_dda_setup2_ones_left <= {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift};
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ones_left <= {1'b0, card1_card_core1_regs_fifo2_sequencer2_dda_lambda_shift};
         end
     end
-    else if ((card1_card_core1_dda_arc2_dda_setup2_state == 3'b001)) begin
-        card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= card1_card_core1_dda_arc2_dda_setup2_major[28-1:0];
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b001)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_major[28-1:0];
     end
     else if (1'b1) begin
-        if (((card1_card_core1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_arc2_dda_setup2_ones_left != 0))) begin
+        if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b011) && (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ones_left != 0))) begin
             shift = 1'b1;
-            card1_card_core1_dda_arc2_dda_setup2_ones_left <= (card1_card_core1_dda_arc2_dda_setup2_ones_left - 1);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ones_left <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ones_left - 1);
         end
-        else if (((card1_card_core1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_arc2_dda_setup2_grew)) begin
+        else if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_acc_bits == 0) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_grew)) begin
             shift = 1'b1;
         end
         if (shift) begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_threshold <= {card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)-1:0], 1'b1};
-            if (card1_card_core1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)]) begin
-                card1_card_core1_dda_arc2_dda_setup2_plan_too_wide <= 1'b1;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold <= {card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)-1:0], 1'b1};
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold[(28 - 1)]) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_too_wide <= 1'b1;
             end
         end
     end
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_setup2_captures
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_captures
     reg sign;
-    sign = card1_card_core1_dda_arc2_dda_setup2_total[(49 - 1)];
-    case (card1_card_core1_dda_arc2_dda_setup2_state)
+    sign = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(49 - 1)];
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state)
         3'b000: begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
         end
         3'b010: begin
-            case (card1_card_core1_dda_arc2_dda_setup2_step)
+            case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
                 'h2: begin
-                    card1_card_core1_dda_arc2_dda_setup2_m_is_y <= sign;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y <= sign;
                 end
                 'h4: begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
-                    card1_card_core1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
                 end
                 'h6: begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
-                    card1_card_core1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
                 end
             endcase
         end
         3'b100: begin
-            if ((((card1_card_core1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_arc2_dda_setup2_step == 4) && sign))) begin
-                card1_card_core1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
+            if ((((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4) && sign))) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
             end
         end
         3'b101: begin
-            case (card1_card_core1_dda_arc2_dda_setup2_step)
+            case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
                 'h0: begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_radius <= card1_card_core1_dda_arc2_dda_setup2_total[(24 + 2)-1:1];
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(24 + 2)-1:1];
                 end
                 'h2: begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_beyond <= sign;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_beyond <= sign;
                 end
                 'h7: begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_total[27-1:0]);
-                    card1_card_core1_dda_arc2_dda_setup2_pick_x <= (!card1_card_core1_dda_arc2_dda_setup2_total[(27 - 1)]);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[27-1:0]);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_pick_x <= (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(27 - 1)]);
                 end
                 'hc: begin
-                    card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_total[27-1:0];
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[27-1:0];
                 end
             endcase
         end
         3'b001: begin
-            card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_arc2_dda_setup2_major[27-1:0]);
-            card1_card_core1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_arc2_dda_setup2_major[27-1:0];
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_diff <= $signed(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_major[27-1:0]);
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_max <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_major[27-1:0];
         end
         default: begin
-            card1_card_core1_dda_arc2_dda_setup2_m_is_y <= card1_card_core1_dda_arc2_dda_setup2_m_is_y;
+            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y <= card1_card_core1_dda_axes1_dda_arc2_dda_setup2_m_is_y;
         end
     endcase
 end
 
 
 
-assign card1_card_core1_regs_fifo2_sequencer2_dda_ready = (card1_card_core1_dda_arc2_dda_setup2_state == 3'b000);
-assign card1_card_core1_dda_arc2_dda_setup2_plan_done = (card1_card_core1_dda_arc2_dda_setup2_state == 3'b110);
+assign card1_card_core1_regs_fifo2_sequencer2_dda_ready = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b000);
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_done = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state == 3'b110);
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_lookup_variant
-    case (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant)
-        0: card1_card_core1_dda_arc2_dda_check2_variant_built = 0;
-        1: card1_card_core1_dda_arc2_dda_check2_variant_built = 0;
-        2: card1_card_core1_dda_arc2_dda_check2_variant_built = 1;
-        default: card1_card_core1_dda_arc2_dda_check2_variant_built = 1;
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_axes1_dda_arc2_dda_check2_lookup_variant
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant)
+        0: card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built = 0;
+        1: card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built = 0;
+        2: card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built = 1;
+        default: card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built = 1;
     endcase
 end
 
 
 
-assign card1_card_core1_dda_arc2_dda_check2_move_offer = card1_card_core1_dda_arc2_dda_setup2_plan_done;
-assign card1_card_core1_dda_arc2_dda_setup2_dda_sequence2_plan_taken = card1_card_core1_dda_arc2_dda_check2_move_take;
+assign card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_offer = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_done;
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_sequence2_plan_taken = card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take;
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_core1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre, card1_card_core1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_validate
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ahead, card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_beyond, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_too_wide, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_centre, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_axes1_dda_arc2_dda_check2_validate
     reg bad;
-    bad = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre || card1_card_core1_dda_arc2_dda_setup2_plan_off_circle || (card1_card_core1_dda_arc2_dda_setup2_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
-    if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ahead) && card1_card_core1_dda_arc2_dda_setup2_plan_beyond)) begin
+    bad = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_centre || card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius[(24 + 1)-1:(24 - 1)] != 0));
+    if (((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ahead) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_beyond)) begin
         bad = 1'b1;
     end
-    if (((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant != 3) && card1_card_core1_dda_arc2_dda_setup2_plan_too_wide)) begin
+    if (((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant != 3) && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_too_wide)) begin
         bad = 1'b1;
     end
-    if ((!card1_card_core1_dda_arc2_dda_check2_variant_built)) begin
+    if ((!card1_card_core1_dda_axes1_dda_arc2_dda_check2_variant_built)) begin
         bad = 1'b1;
     end
-    card1_card_core1_dda_arc2_dda_check2_move_error = (bad && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line));
-    card1_card_core1_dda_arc2_dda_check2_move_zero = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line && card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_centre);
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_error = (bad && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line));
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_zero = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_centre);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_geometry
-    card1_card_core1_dda_arc2_dda_check2_move_line = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line;
-    card1_card_core1_dda_arc2_dda_check2_move_variant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
-    card1_card_core1_dda_arc2_dda_check2_move_ccw = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
-    card1_card_core1_dda_arc2_dda_check2_move_blend = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
-    card1_card_core1_dda_arc2_dda_check2_move_right = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe);
-    card1_card_core1_dda_arc2_dda_check2_move_up = (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye);
-    card1_card_core1_dda_arc2_dda_check2_move_x_inward = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward;
-    card1_card_core1_dda_arc2_dda_check2_move_quadrant = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
-    card1_card_core1_dda_arc2_dda_check2_move_crossings = card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings;
-    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
-        card1_card_core1_dda_arc2_dda_check2_move_quadrant = 0;
-        card1_card_core1_dda_arc2_dda_check2_move_crossings = 0;
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_blend, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_axes1_dda_arc2_dda_check2_geometry
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_line = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_variant = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_ccw = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_ccw;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_blend = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_blend;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_right = (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_xe);
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_up = (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_neg_ye);
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_x_inward = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_quadrant = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_quadrant;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_crossings = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings;
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_quadrant = 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_crossings = 0;
     end
-    if ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_crossings == 0)) begin
-        card1_card_core1_dda_arc2_dda_check2_move_target_x = 2;
-        card1_card_core1_dda_arc2_dda_check2_move_target_y = 2;
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_crossings == 0)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_x = 2;
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_y = 2;
     end
-    else if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward) begin
-        card1_card_core1_dda_arc2_dda_check2_move_target_x = 0;
-        card1_card_core1_dda_arc2_dda_check2_move_target_y = 1;
+    else if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_x = 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_y = 1;
     end
     else begin
-        card1_card_core1_dda_arc2_dda_check2_move_target_x = 1;
-        card1_card_core1_dda_arc2_dda_check2_move_target_y = 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_x = 1;
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_y = 0;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_totals_max, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_arc2_dda_check2_magnitudes
-    card1_card_core1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs;
-    card1_card_core1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys;
-    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
-        card1_card_core1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
-        card1_card_core1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_max, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_diff, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye) begin: card1_card_core1_dda_axes1_dda_arc2_dda_check2_magnitudes
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys;
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_x = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye;
+        card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_y = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe;
     end
-    card1_card_core1_dda_arc2_dda_check2_move_end_x = card1_card_core1_dda_arc2_dda_setup2_plan_mag_xe;
-    card1_card_core1_dda_arc2_dda_check2_move_end_y = card1_card_core1_dda_arc2_dda_setup2_plan_mag_ye;
-    card1_card_core1_dda_arc2_dda_check2_move_radius = card1_card_core1_dda_arc2_dda_setup2_plan_radius[24-1:0];
-    card1_card_core1_dda_arc2_dda_check2_move_totals_diff = card1_card_core1_dda_arc2_dda_setup2_plan_totals_diff;
-    card1_card_core1_dda_arc2_dda_check2_move_totals_max = card1_card_core1_dda_arc2_dda_setup2_plan_totals_max;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_end_x = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_end_y = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ye;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_radius = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius[24-1:0];
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_totals_diff = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_diff;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_totals_max = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_max;
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_arc2_dda_check2_thresholds
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant) begin: card1_card_core1_dda_axes1_dda_arc2_dda_check2_thresholds
     reg [28-1:0] less;
     reg [30-1:0] below;
     reg [29-1:0] ones;
     less = 28'h0;
     below = 30'h0;
     ones = 29'h0;
-    less = card1_card_core1_dda_arc2_dda_setup2_plan_threshold;
-    if (((!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((!1'b1) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 3)))) begin
+    less = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold;
+    if (((!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((!1'b1) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 3)))) begin
         less = 0;
-        less[24-1:0] = card1_card_core1_dda_arc2_dda_setup2_plan_radius[24-1:0];
+        less[24-1:0] = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius[24-1:0];
     end
-    card1_card_core1_dda_arc2_dda_check2_move_threshold = less;
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_threshold = less;
     below = (~{3'h0, less[28-1:1]});
-    if ((1'b1 && (!card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 1) || (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 2)))) begin
+    if ((1'b1 && (!card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line) && ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 1) || (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_variant == 2)))) begin
         ones = ({less, 1'b1} & (~{1'b0, less}));
         below = (~{1'h0, ones});
     end
-    card1_card_core1_dda_arc2_dda_check2_move_acc_init = $signed(below);
-    card1_card_core1_dda_arc2_dda_check2_move_acc_carry = (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_line && (!less[0]));
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_init = $signed(below);
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_carry = (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_line && (!less[0]));
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_arc2_dda_check2_precise_terms
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys) begin: card1_card_core1_dda_axes1_dda_arc2_dda_check2_precise_terms
     reg [27-1:0] inward;
     reg [27-1:0] outward;
     reg [27-1:0] bias_in;
@@ -8003,106 +8283,106 @@ always @(card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs, card1_card_core1_dda_
     outward = 27'h0;
     bias_in = 27'h0;
     bias_out = 27'h0;
-    inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
-    outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
-    if (card1_card_core1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward) begin
-        inward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_xs};
-        outward = {3'h0, card1_card_core1_dda_arc2_dda_setup2_plan_mag_ys};
+    inward = {3'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys};
+    outward = {3'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs};
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_plan_x_inward) begin
+        inward = {3'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs};
+        outward = {3'h0, card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys};
     end
     bias_in = ({outward[(27 - 1)-1:0], 1'b0} - inward);
     bias_out = (outward - {inward[(27 - 1)-1:0], 1'b0});
-    card1_card_core1_dda_arc2_dda_check2_move_bias_in = $signed(bias_in);
-    card1_card_core1_dda_arc2_dda_check2_move_bias_out = $signed(bias_out);
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_bias_in = $signed(bias_in);
+    card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_bias_out = $signed(bias_out);
 end
 
 
 
-assign card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
-assign card1_card_core1_dda_arc2_dda_run2_step_last = (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0);
+assign card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left = card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger;
+assign card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference == 0);
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_follow
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_follow
     reg [27-1:0] base;
     reg [27-1:0] change;
     base = 27'h0;
     change = 27'h0;
-    base = card1_card_core1_dda_arc2_dda_run2_dda_left2_difference;
-    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        base = card1_card_core1_dda_arc2_dda_check2_move_totals_diff;
-        if (card1_card_core1_dda_arc2_dda_check2_move_line) begin
+    base = card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference;
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take) begin
+        base = card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_totals_diff;
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_line) begin
             change = 27'h7ffffff;
         end
     end
-    else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
-        if ((card1_card_core1_dda_arc2_dda_run2_step_line || (card1_card_core1_dda_arc2_dda_run2_step_step_x && (!card1_card_core1_dda_arc2_dda_run2_step_step_y)))) begin
+    else if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending) begin
+        if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y)))) begin
             change = 27'h7ffffff;
         end
-        else if ((card1_card_core1_dda_arc2_dda_run2_step_step_y && (!card1_card_core1_dda_arc2_dda_run2_step_step_x))) begin
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x))) begin
             change = 1;
         end
     end
-    card1_card_core1_dda_arc2_dda_run2_dda_left2_difference <= (base + change);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference <= (base + change);
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_dda_left2_count_down
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_count_down
     reg [27-1:0] base;
     reg [27-1:0] less;
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger <= 134217727;
     end
     else begin
         base = 27'h0;
         less = 27'h0;
-        base = card1_card_core1_dda_arc2_dda_run2_dda_left2_larger;
-        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            base = card1_card_core1_dda_arc2_dda_check2_move_totals_max;
+        base = card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger;
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take) begin
+            base = card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_totals_max;
             less = 27'h7ffffff;
         end
-        else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_blend))) begin
-            if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend))) begin
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) begin
                 less = 27'h7ffffff;
             end
-            else if ((card1_card_core1_dda_arc2_dda_run2_dda_left2_difference == 0)) begin
-                if ((card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_step_step_y)) begin
+            else if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference == 0)) begin
+                if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y)) begin
                     less = 27'h7ffffff;
                 end
             end
-            else if (card1_card_core1_dda_arc2_dda_run2_dda_left2_difference[(27 - 1)]) begin
-                if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
+            else if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference[(27 - 1)]) begin
+                if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y) begin
                     less = 27'h7ffffff;
                 end
             end
-            else if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
+            else if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin
                 less = 27'h7ffffff;
             end
         end
-        card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= (base + less);
-        if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-            if ((card1_card_core1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
-                card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger <= (base + less);
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take) begin
+            if ((card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_blend || card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_error || card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_zero)) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
             end
         end
-        else if ((card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)) begin
-            card1_card_core1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
+        else if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished)) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_larger <= 27'h7ffffff;
         end
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_signs
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out, card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_signs
     reg [28-1:0] inward;
     reg [28-1:0] outward;
     inward = 28'h0;
     outward = 28'h0;
-    inward = ({card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in});
-    outward = ({card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out[(27 - 1)], card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out});
-    card1_card_core1_dda_arc2_dda_run2_step_inward_near = ($signed(inward) >= 0);
-    card1_card_core1_dda_arc2_dda_run2_step_outward_near = ($signed(outward) < 0);
+    inward = ({card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in[(27 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in});
+    outward = ({card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term[(27 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term} + {card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out[(27 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near = ($signed(inward) >= 0);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_outward_near = ($signed(outward) < 0);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_change
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_change
     reg [27-1:0] outward;
     reg [27-1:0] inward;
     reg [27-1:0] first_sum;
@@ -8111,30 +8391,30 @@ always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_
     inward = 27'h0;
     first_sum = 27'h0;
     stepped_in = 1'b0;
-    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
-        if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
-            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b1};
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward) begin
+        stepped_in = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x == 1);
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y) begin
+            outward = {2'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, 1'b1};
         end
-        if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
-            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin
+            inward = (~{2'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x, 1'b0});
         end
     end
     else begin
-        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
-        if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
-            outward = {2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b1};
+        stepped_in = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y == 1);
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin
+            outward = {2'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x, 1'b1};
         end
-        if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
-            inward = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y) begin
+            inward = (~{2'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, 1'b0});
         end
     end
-    first_sum = ((card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term + outward) + {26'h0, stepped_in});
-    card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step = ((first_sum + inward) + {26'h0, stepped_in});
+    first_sum = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term + outward) + {26'h0, stepped_in});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_step = ((first_sum + inward) + {26'h0, stepped_in});
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_update
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_update
     reg [27-1:0] base_in;
     reg [27-1:0] base_out;
     reg [27-1:0] op_in;
@@ -8146,20 +8426,20 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_u
     base_out = 27'h0;
     op_in = 27'h0;
     op_out = 27'h0;
-    stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
-    stepped_out = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
-    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-        stepped_in = (card1_card_core1_dda_arc2_dda_run2_step_step_x == 1);
-        stepped_out = (card1_card_core1_dda_arc2_dda_run2_step_step_y == 1);
+    stepped_in = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y == 1);
+    stepped_out = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x == 1);
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward) begin
+        stepped_in = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x == 1);
+        stepped_out = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y == 1);
     end
-    base_in = card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in;
-    base_out = card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out;
+    base_in = card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in;
+    base_out = card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out;
     op_in = {25'h0, stepped_out, stepped_in};
     op_out = {25'h0, stepped_in, stepped_out};
-    turn = (card1_card_core1_dda_arc2_dda_run2_step_new_piece == 1);
+    turn = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece == 1);
     if (turn) begin
-        base_in = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out);
-        base_out = (~card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in);
+        base_in = (~card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out);
+        base_out = (~card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in);
         if ((stepped_in && stepped_out)) begin
             op_in = 27'h7fffffd;
             op_out = 27'h7fffffd;
@@ -8177,99 +8457,99 @@ always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_dda_nearest2_u
             op_out = 0;
         end
     end
-    if ((card1_card_core1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in <= ((base_in + op_in) + {26'h0, turn});
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out <= ((base_out + op_out) + {26'h0, turn});
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_step;
+    if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line))) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in <= ((base_in + op_in) + {26'h0, turn});
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out <= ((base_out + op_out) + {26'h0, turn});
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_step;
     end
-    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_in <= card1_card_core1_dda_arc2_dda_check2_move_bias_in;
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_bias_out <= card1_card_core1_dda_arc2_dda_check2_move_bias_out;
-        card1_card_core1_dda_arc2_dda_run2_dda_nearest2_error_term <= 1;
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_bias_in;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_bias_out;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term <= 1;
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_look_ahead
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_look_ahead
     reg [31-1:0] twice_x;
     reg [31-1:0] twice_y;
     twice_x = 31'h0;
     twice_y = 31'h0;
-    twice_x = ({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {6'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y, 1'b0});
-    twice_y = ({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {6'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x, 1'b0});
-    card1_card_core1_dda_arc2_dda_run2_ahead_x = ($signed(twice_x) >= 0);
-    card1_card_core1_dda_arc2_dda_run2_ahead_y = ($signed(twice_y) >= 0);
+    twice_x = ({card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x} + {6'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, 1'b0});
+    twice_y = ({card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y} + {6'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x, 1'b0});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_x = ($signed(twice_x) >= 0);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_y = ($signed(twice_y) >= 0);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_kept_x, card1_card_core1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_arc2_dda_run2_kept_y, card1_card_core1_dda_arc2_dda_run2_first, card1_card_core1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_arc2_dda_run2_accumulate
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold, card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold_carry, card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_first, card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_accumulate
     reg [30-1:0] minus_x;
     reg [30-1:0] minus_y;
     minus_x = 30'h0;
     minus_y = 30'h0;
-    card1_card_core1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_x} + {7'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_y}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
-    card1_card_core1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_arc2_dda_run2_acc_y} + {7'h0, card1_card_core1_dda_arc2_dda_run2_step_mag_x}) + {30'h0, card1_card_core1_dda_arc2_dda_run2_first});
-    if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
-        minus_x = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x = (({card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x[(30 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x} + {7'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y}) + {30'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_first});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y = (({card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y[(30 - 1)], card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y} + {7'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x}) + {30'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_first});
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin
+        minus_x = (~{2'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold});
     end
-    if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
-        minus_y = (~{2'h0, card1_card_core1_dda_arc2_dda_run2_threshold});
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y) begin
+        minus_y = (~{2'h0, card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold});
     end
-    card1_card_core1_dda_arc2_dda_run2_less_x = ((card1_card_core1_dda_arc2_dda_run2_kept_x + minus_x) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
-    card1_card_core1_dda_arc2_dda_run2_less_y = ((card1_card_core1_dda_arc2_dda_run2_kept_y + minus_y) + {29'h0, (card1_card_core1_dda_arc2_dda_run2_step_step_y && card1_card_core1_dda_arc2_dda_run2_threshold_carry)});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_less_x = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_x + minus_x) + {29'h0, (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x && card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold_carry)});
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_less_y = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_y + minus_y) + {29'h0, (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y && card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold_carry)});
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_over_y) begin: card1_card_core1_dda_arc2_dda_run2_overflow
-    card1_card_core1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_arc2_dda_run2_sum_x[30]);
-    card1_card_core1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_arc2_dda_run2_sum_y[30]);
-    card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
-    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
-        card1_card_core1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant, card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_overflow
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x = (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[30]);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y = (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y[30]);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
+    if ((1'b0 && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line))) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_x = ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[30]) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[(30 - 1)]);
     end
-    card1_card_core1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_y = ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y[30]) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y[(30 - 1)]);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_arc2_dda_run2_magnitudes
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_magnitudes
     reg [24-1:0] op_x;
     reg [24-1:0] op_y;
     op_x = 24'h0;
     op_y = 24'h0;
     op_x = 1;
     op_y = 16777215;
-    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward) begin
         op_x = 16777215;
         op_y = 1;
     end
-    card1_card_core1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x + op_x);
-    card1_card_core1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y + op_y);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_stepped_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x + op_x);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_stepped_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y + op_y);
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_radius, card1_card_core1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_arc2_dda_run2_goals
-    card1_card_core1_dda_arc2_dda_run2_goal_x = 0;
-    case (card1_card_core1_dda_arc2_dda_run2_target_x)
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_radius, card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_goals
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x = 0;
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x)
         'h1: begin
-            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_radius;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_radius;
         end
         'h2: begin
-            card1_card_core1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_arc2_dda_run2_end_x;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_x;
         end
     endcase
-    card1_card_core1_dda_arc2_dda_run2_goal_y = 0;
-    case (card1_card_core1_dda_arc2_dda_run2_target_y)
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y = 0;
+    case (card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y)
         'h1: begin
-            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_radius;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_radius;
         end
         'h2: begin
-            card1_card_core1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_arc2_dda_run2_end_y;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_y;
         end
     endcase
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_arc2_dda_run2_goal_x, card1_card_core1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_arc2_dda_run2_goal_y) begin: card1_card_core1_dda_arc2_dda_run2_end_tests
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_tests
     reg [24-1:0] diff_x;
     reg [24-1:0] diff_y;
     reg [23-1:0] up_x;
@@ -8282,26 +8562,26 @@ always @(card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_
     up_y = 23'h0;
     down_x = 23'h0;
     down_y = 23'h0;
-    diff_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x ^ card1_card_core1_dda_arc2_dda_run2_goal_x);
-    diff_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y ^ card1_card_core1_dda_arc2_dda_run2_goal_y);
-    up_x = (card1_card_core1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0]));
-    up_y = (card1_card_core1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0]));
-    down_x = (card1_card_core1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0]));
-    down_y = (card1_card_core1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0] & (~card1_card_core1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0]));
-    card1_card_core1_dda_arc2_dda_run2_at_x = (diff_x == 0);
-    card1_card_core1_dda_arc2_dda_run2_at_y = (diff_y == 0);
-    if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-        card1_card_core1_dda_arc2_dda_run2_near_x = (diff_x == {down_x, 1'b1});
-        card1_card_core1_dda_arc2_dda_run2_near_y = (diff_y == {up_y, 1'b1});
+    diff_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x ^ card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x);
+    diff_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y ^ card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y);
+    up_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0] & (~card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0]));
+    up_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0] & (~card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0]));
+    down_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_x[(24 - 1)-1:0] & (~card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x[(24 - 1)-1:0]));
+    down_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_goal_y[(24 - 1)-1:0] & (~card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y[(24 - 1)-1:0]));
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x = (diff_x == 0);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y = (diff_y == 0);
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_x = (diff_x == {down_x, 1'b1});
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_y = (diff_y == {up_y, 1'b1});
     end
     else begin
-        card1_card_core1_dda_arc2_dda_run2_near_x = (diff_x == {up_x, 1'b1});
-        card1_card_core1_dda_arc2_dda_run2_near_y = (diff_y == {down_y, 1'b1});
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_x = (diff_x == {up_x, 1'b1});
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_y = (diff_y == {down_y, 1'b1});
     end
 end
 
 
-always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_arc2_dda_run2_variant, card1_card_core1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_arc2_dda_run2_decide
+always @(card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_outward_near, card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward, card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line, card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings, card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near, card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_decide
     reg step_x;
     reg step_y;
     reg diagonal;
@@ -8310,217 +8590,217 @@ always @(card1_card_core1_dda_arc2_dda_run2_over_x, card1_card_core1_dda_arc2_dd
     reg tail_ends;
     reg both_near;
     reg last_piece;
-    step_x = (card1_card_core1_dda_arc2_dda_run2_over_x == 1);
-    step_y = (card1_card_core1_dda_arc2_dda_run2_over_y == 1);
-    diagonal = (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_over_y);
+    step_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x == 1);
+    step_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y == 1);
+    diagonal = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y);
     choose_x = 1'b0;
     choose_y = 1'b0;
     if (1'b1) begin
-        choose_x = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
-        choose_y = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
-        if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-            choose_x = (card1_card_core1_dda_arc2_dda_run2_step_inward_near == 1);
-            choose_y = (card1_card_core1_dda_arc2_dda_run2_step_outward_near == 1);
+        choose_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_outward_near == 1);
+        choose_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near == 1);
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward) begin
+            choose_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near == 1);
+            choose_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_outward_near == 1);
         end
     end
-    if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0))) begin
-        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x) || ((!card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_over_x));
-        diagonal = (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_over_x);
+    if ((1'b0 && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant == 0))) begin
+        step_x = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x) || ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x));
+        diagonal = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x);
     end
-    else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 2))) begin
-        step_x = (card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x));
-        step_y = (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y));
-        diagonal = ((card1_card_core1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_arc2_dda_run2_ahead_x)) && (card1_card_core1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_arc2_dda_run2_ahead_y)));
+    else if ((1'b1 && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant == 2))) begin
+        step_x = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_x));
+        step_y = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_y));
+        diagonal = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y && card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_x)) && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x && card1_card_core1_dda_axes1_dda_arc2_dda_run2_ahead_y)));
     end
-    else if ((1'b1 && (card1_card_core1_dda_arc2_dda_run2_variant == 3))) begin
-        step_x = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_x);
-        step_y = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && choose_y);
-        diagonal = ((card1_card_core1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_arc2_dda_run2_step_inward_near && card1_card_core1_dda_arc2_dda_run2_step_outward_near);
+    else if ((1'b1 && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant == 3))) begin
+        step_x = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y) && choose_x);
+        step_y = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y) && choose_y);
+        diagonal = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_outward_near);
     end
-    if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
-        card1_card_core1_dda_arc2_dda_run2_go_x = card1_card_core1_dda_arc2_dda_run2_over_x;
-        card1_card_core1_dda_arc2_dda_run2_go_y = card1_card_core1_dda_arc2_dda_run2_over_y;
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_x;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y;
     end
-    else if ((card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y)) begin
-        card1_card_core1_dda_arc2_dda_run2_go_x = (!card1_card_core1_dda_arc2_dda_run2_at_x);
-        card1_card_core1_dda_arc2_dda_run2_go_y = (!card1_card_core1_dda_arc2_dda_run2_at_y);
+    else if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y)) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x = (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x);
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y = (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y);
     end
     else begin
-        card1_card_core1_dda_arc2_dda_run2_go_x = step_x;
-        card1_card_core1_dda_arc2_dda_run2_go_y = step_y;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x = step_x;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y = step_y;
     end
-    card1_card_core1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y));
-    tail_ends = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_at_y) && (card1_card_core1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_arc2_dda_run2_near_y));
-    both_near = ((!card1_card_core1_dda_arc2_dda_run2_step_line) && (!card1_card_core1_dda_arc2_dda_run2_at_x) && (!card1_card_core1_dda_arc2_dda_run2_at_y) && card1_card_core1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_arc2_dda_run2_near_y);
-    last_piece = (card1_card_core1_dda_arc2_dda_run2_crossings == 0);
-    card1_card_core1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_arc2_dda_run2_step_line && card1_card_core1_dda_arc2_dda_run2_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
-    card1_card_core1_dda_arc2_dda_run2_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail = ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y));
+    tail_ends = ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y) && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x || card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_x) && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y || card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_y));
+    both_near = ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_x) && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_at_y) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_x && card1_card_core1_dda_axes1_dda_arc2_dda_run2_near_y);
+    last_piece = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings == 0);
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_finished = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last) || (last_piece && (tail_ends || (both_near && diagonal))));
+    card1_card_core1_dda_axes1_dda_arc2_dda_run2_next_piece = ((!last_piece) && (tail_ends || (both_near && diagonal)));
 end
 
 
 
-assign card1_card_core1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished)));
-assign card1_card_core1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_arc2_dda_run2_step_pending));
+assign card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished)));
+assign card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending));
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_decision
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_decision
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_step_new_piece <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_pending <= 0;
-        card1_card_core1_dda_arc2_dda_run2_tail_taken <= 0;
-        card1_card_core1_regs_fifo2_steps_step_x <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail_taken <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
-        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
-        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
-        card1_card_core1_regs_fifo2_steps_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_step_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_step_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_finished <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
-        card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x <= 1'b0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
-        card1_card_core1_dda_arc2_dda_run2_step_pending <= 1'b0;
-        if (card1_card_core1_dda_arc2_dda_run2_taking) begin
-            card1_card_core1_dda_arc2_dda_run2_step_pending <= 1'b1;
-            card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
-            card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
-            if (card1_card_core1_dda_arc2_dda_run2_step_line) begin
-                card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_arc2_dda_run2_right;
-                card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_arc2_dda_run2_up;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending <= 1'b0;
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending <= 1'b1;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y;
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_right;
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_up;
             end
             else begin
-                card1_card_core1_regs_fifo2_steps_dir_x <= ((card1_card_core1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_arc2_dda_run2_step_x_inward);
-                card1_card_core1_regs_fifo2_steps_dir_y <= ((!card1_card_core1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x <= ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y <= ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
             end
-            card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_arc2_dda_run2_finished;
-            card1_card_core1_dda_arc2_dda_run2_step_step_x <= card1_card_core1_dda_arc2_dda_run2_go_x;
-            card1_card_core1_dda_arc2_dda_run2_step_step_y <= card1_card_core1_dda_arc2_dda_run2_go_y;
-            card1_card_core1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_arc2_dda_run2_finished;
-            card1_card_core1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_arc2_dda_run2_tail;
-            card1_card_core1_dda_arc2_dda_run2_step_new_piece <= card1_card_core1_dda_arc2_dda_run2_next_piece;
+            card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_finished;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_finished;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail_taken <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_next_piece;
         end
-        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
+        if ((card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_zero)) begin
             card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b1;
         end
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_running_move
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_running_move
     if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_arc2_dda_run2_active <= 0;
-        card1_card_core1_dda_arc2_dda_run2_variant <= 3;
-        card1_card_core1_dda_arc2_dda_run2_threshold_carry <= 0;
-        card1_card_core1_dda_arc2_dda_run2_first <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_x_inward <= 0;
-        card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
-        card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_blend <= 0;
-        card1_card_core1_dda_arc2_dda_run2_crossings <= 0;
-        card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
-        card1_card_core1_dda_arc2_dda_run2_step_line <= 0;
-        card1_card_core1_dda_arc2_dda_run2_ccw <= 0;
-        card1_card_core1_dda_arc2_dda_run2_right <= 0;
-        card1_card_core1_dda_arc2_dda_run2_up <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_active <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant <= 3;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold_carry <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_first <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_ccw <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_right <= 0;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_up <= 0;
     end
     else begin
-        if (card1_card_core1_dda_arc2_dda_run2_taking) begin
-            card1_card_core1_dda_arc2_dda_run2_first <= 1'b0;
+        if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_first <= 1'b0;
         end
-        else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
-            if (card1_card_core1_dda_arc2_dda_run2_step_finished) begin
-                card1_card_core1_dda_arc2_dda_run2_active <= 1'b0;
+        else if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending) begin
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_active <= 1'b0;
             end
-            if (card1_card_core1_dda_arc2_dda_run2_step_new_piece) begin
-                card1_card_core1_dda_arc2_dda_run2_step_x_inward <= (!card1_card_core1_dda_arc2_dda_run2_step_x_inward);
-                card1_card_core1_dda_arc2_dda_run2_crossings <= (card1_card_core1_dda_arc2_dda_run2_crossings - 1);
-                if (card1_card_core1_dda_arc2_dda_run2_ccw) begin
-                    card1_card_core1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_arc2_dda_run2_quadrant + 1);
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward <= (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings <= (card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings - 1);
+                if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_ccw) begin
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant + 1);
                 end
                 else begin
-                    card1_card_core1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_arc2_dda_run2_quadrant - 1);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant <= (card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant - 1);
                 end
-                if ((card1_card_core1_dda_arc2_dda_run2_crossings == 1)) begin
-                    card1_card_core1_dda_arc2_dda_run2_target_x <= 2;
-                    card1_card_core1_dda_arc2_dda_run2_target_y <= 2;
+                if ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings == 1)) begin
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x <= 2;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y <= 2;
                 end
-                else if (card1_card_core1_dda_arc2_dda_run2_step_x_inward) begin
-                    card1_card_core1_dda_arc2_dda_run2_target_x <= 1;
-                    card1_card_core1_dda_arc2_dda_run2_target_y <= 0;
+                else if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward) begin
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x <= 1;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y <= 0;
                 end
                 else begin
-                    card1_card_core1_dda_arc2_dda_run2_target_x <= 0;
-                    card1_card_core1_dda_arc2_dda_run2_target_y <= 1;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x <= 0;
+                    card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y <= 1;
                 end
             end
         end
-        if ((card1_card_core1_dda_arc2_dda_check2_move_take && (!card1_card_core1_dda_arc2_dda_check2_move_error) && (!card1_card_core1_dda_arc2_dda_check2_move_zero))) begin
-            card1_card_core1_dda_arc2_dda_run2_active <= 1'b1;
-            card1_card_core1_dda_arc2_dda_run2_first <= card1_card_core1_dda_arc2_dda_check2_move_acc_carry;
-            card1_card_core1_dda_arc2_dda_run2_step_line <= card1_card_core1_dda_arc2_dda_check2_move_line;
-            card1_card_core1_dda_arc2_dda_run2_variant <= card1_card_core1_dda_arc2_dda_check2_move_variant;
-            card1_card_core1_dda_arc2_dda_run2_ccw <= card1_card_core1_dda_arc2_dda_check2_move_ccw;
-            card1_card_core1_dda_arc2_dda_run2_step_blend <= card1_card_core1_dda_arc2_dda_check2_move_blend;
-            card1_card_core1_dda_arc2_dda_run2_right <= card1_card_core1_dda_arc2_dda_check2_move_right;
-            card1_card_core1_dda_arc2_dda_run2_up <= card1_card_core1_dda_arc2_dda_check2_move_up;
-            card1_card_core1_dda_arc2_dda_run2_quadrant <= card1_card_core1_dda_arc2_dda_check2_move_quadrant;
-            card1_card_core1_dda_arc2_dda_run2_step_x_inward <= card1_card_core1_dda_arc2_dda_check2_move_x_inward;
-            card1_card_core1_dda_arc2_dda_run2_crossings <= card1_card_core1_dda_arc2_dda_check2_move_crossings;
-            card1_card_core1_dda_arc2_dda_run2_target_x <= card1_card_core1_dda_arc2_dda_check2_move_target_x;
-            card1_card_core1_dda_arc2_dda_run2_target_y <= card1_card_core1_dda_arc2_dda_check2_move_target_y;
-            card1_card_core1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_arc2_dda_check2_move_line;
+        if ((card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take && (!card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_error) && (!card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_zero))) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_active <= 1'b1;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_first <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_carry;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_line;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_variant;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_ccw <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_ccw;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_blend;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_right <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_right;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_up <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_up;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_quadrant;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_x_inward;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_crossings <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_crossings;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_x <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_x;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_target_y <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_target_y;
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold_carry <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_line;
         end
-        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_zero)) begin
-            card1_card_core1_dda_arc2_dda_run2_quadrant <= 0;
+        if ((card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_zero)) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant <= 0;
         end
     end
 end
 
 
-always @(posedge clock) begin: card1_card_core1_dda_arc2_dda_run2_datapath
-    if (card1_card_core1_dda_arc2_dda_run2_taking) begin
-        card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
-        if ((1'b0 && (card1_card_core1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_arc2_dda_run2_step_line))) begin
-            card1_card_core1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_arc2_dda_run2_sum_x[30-1:0];
+always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_datapath
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[30-1:0];
+        if ((1'b0 && (card1_card_core1_dda_axes1_dda_arc2_dda_run2_variant == 0) && card1_card_core1_dda_axes1_dda_arc2_dda_run2_over_y && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line))) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_x[30-1:0];
         end
-        card1_card_core1_dda_arc2_dda_run2_kept_y <= card1_card_core1_dda_arc2_dda_run2_sum_y[30-1:0];
-        if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_x)) begin
-            card1_card_core1_dda_arc2_dda_run2_kept_x <= 536870911;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_sum_y[30-1:0];
+        if ((1'b1 && card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_x)) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_x <= 536870911;
         end
-        if ((1'b1 && card1_card_core1_dda_arc2_dda_run2_saturate_y)) begin
-            card1_card_core1_dda_arc2_dda_run2_kept_y <= 536870911;
-        end
-    end
-    else if (card1_card_core1_dda_arc2_dda_run2_step_pending) begin
-        if ((!card1_card_core1_dda_arc2_dda_run2_tail_taken)) begin
-            card1_card_core1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_arc2_dda_run2_less_x);
-            card1_card_core1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_arc2_dda_run2_less_y);
-        end
-        if ((!card1_card_core1_dda_arc2_dda_run2_step_line)) begin
-            if (card1_card_core1_dda_arc2_dda_run2_step_step_x) begin
-                card1_card_core1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_arc2_dda_run2_stepped_x;
-            end
-            if (card1_card_core1_dda_arc2_dda_run2_step_step_y) begin
-                card1_card_core1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_arc2_dda_run2_stepped_y;
-            end
+        if ((1'b1 && card1_card_core1_dda_axes1_dda_arc2_dda_run2_saturate_y)) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_kept_y <= 536870911;
         end
     end
-    if (card1_card_core1_dda_arc2_dda_check2_move_take) begin
-        card1_card_core1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_arc2_dda_check2_move_mag_x;
-        card1_card_core1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_arc2_dda_check2_move_mag_y;
-        card1_card_core1_dda_arc2_dda_run2_end_x <= card1_card_core1_dda_arc2_dda_check2_move_end_x;
-        card1_card_core1_dda_arc2_dda_run2_end_y <= card1_card_core1_dda_arc2_dda_check2_move_end_y;
-        card1_card_core1_dda_arc2_dda_run2_radius <= card1_card_core1_dda_arc2_dda_check2_move_radius;
-        card1_card_core1_dda_arc2_dda_run2_threshold <= card1_card_core1_dda_arc2_dda_check2_move_threshold;
-        card1_card_core1_dda_arc2_dda_run2_acc_x <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
-        card1_card_core1_dda_arc2_dda_run2_acc_y <= card1_card_core1_dda_arc2_dda_check2_move_acc_init;
+    else if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending) begin
+        if ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail_taken)) begin
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x <= $signed(card1_card_core1_dda_axes1_dda_arc2_dda_run2_less_x);
+            card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y <= $signed(card1_card_core1_dda_axes1_dda_arc2_dda_run2_less_y);
+        end
+        if ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line)) begin
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_stepped_x;
+            end
+            if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y) begin
+                card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_stepped_y;
+            end
+        end
+    end
+    if (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take) begin
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_x <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_x;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_mag_y <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_mag_y;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_x <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_end_x;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_end_y <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_end_y;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_radius <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_radius;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_threshold <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_threshold;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_x <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_init;
+        card1_card_core1_dda_axes1_dda_arc2_dda_run2_acc_y <= card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_acc_init;
     end
 end
 
 
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_arc2_dda_run2_errors
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_errors
     if (card1_card_core1_dda_reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_dda_error <= 0;
     end
@@ -8528,7 +8808,7 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         if ((card1_card_core1_regs_fifo2_sequencer2_dda_start && card1_card_core1_regs_fifo2_sequencer2_dda_ready)) begin
             card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b0;
         end
-        if ((card1_card_core1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_arc2_dda_check2_move_error)) begin
+        if ((card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take && card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_error)) begin
             card1_card_core1_regs_fifo2_sequencer2_dda_error <= 1'b1;
         end
     end
@@ -8536,7 +8816,64 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_status_words2_words_quadrant = card1_card_core1_dda_arc2_dda_run2_quadrant;
-assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_arc2_dda_run2_step_finished))));
+assign card1_card_core1_regs_fifo2_status_words2_words_quadrant = card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant;
+assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished))));
+
+
+always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1__plane_queue1_follow
+    reg [2-1:0] held;
+    if (card1_card_core1_dda_reset == 0) begin
+        card1_card_core1_dda_axes1__plane_queue1_u_next <= 0;
+        card1_card_core1_dda_axes1_v_run <= 1;
+        card1_card_core1_dda_axes1__plane_queue1_v_next <= 1;
+        card1_card_core1_dda_axes1__plane_queue1_moves <= 0;
+        card1_card_core1_dda_axes1_u_run <= 0;
+    end
+    else begin
+        held = 0;
+        if ((!card1_card_core1_regs_fifo2_sequencer2_dda_error)) begin
+            held = card1_card_core1_dda_axes1__plane_queue1_moves;
+        end
+        if ((card1_card_core1_regs_fifo2_sequencer2_dda_done && (held != 0))) begin
+            held = (held - 1);
+        end
+        if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
+            card1_card_core1_dda_axes1__plane_queue1_moves <= (held + 1);
+            if ((held == 0)) begin
+                card1_card_core1_dda_axes1_u_run <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u;
+                card1_card_core1_dda_axes1_v_run <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v;
+            end
+            else begin
+                card1_card_core1_dda_axes1__plane_queue1_u_next <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u;
+                card1_card_core1_dda_axes1__plane_queue1_v_next <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v;
+            end
+        end
+        else begin
+            card1_card_core1_dda_axes1__plane_queue1_moves <= held;
+            if ((card1_card_core1_regs_fifo2_sequencer2_dda_done && (card1_card_core1_dda_axes1__plane_queue1_moves == 2))) begin
+                card1_card_core1_dda_axes1_u_run <= card1_card_core1_dda_axes1__plane_queue1_u_next;
+                card1_card_core1_dda_axes1_v_run <= card1_card_core1_dda_axes1__plane_queue1_v_next;
+            end
+        end
+    end
+end
+
+
+always @(card1_card_core1_dda_axes1_v_run, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x, card1_card_core1_dda_axes1_u_run) begin: card1_card_core1_dda_axes1_route_0_route
+    card1_card_core1_regs_fifo2_steps_step_x = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x && (card1_card_core1_dda_axes1_u_run == 0)) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y && (card1_card_core1_dda_axes1_v_run == 0)));
+    card1_card_core1_regs_fifo2_steps_dir_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y;
+    if ((card1_card_core1_dda_axes1_u_run == 0)) begin
+        card1_card_core1_regs_fifo2_steps_dir_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x;
+    end
+end
+
+
+always @(card1_card_core1_dda_axes1_v_run, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x, card1_card_core1_dda_axes1_u_run) begin: card1_card_core1_dda_axes1_route_1_route
+    card1_card_core1_regs_fifo2_steps_step_y = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x && (card1_card_core1_dda_axes1_u_run == 1)) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y && (card1_card_core1_dda_axes1_v_run == 1)));
+    card1_card_core1_regs_fifo2_steps_dir_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y;
+    if ((card1_card_core1_dda_axes1_u_run == 1)) begin
+        card1_card_core1_regs_fifo2_steps_dir_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x;
+    end
+end
 
 endmodule

@@ -15,16 +15,26 @@ from pathlib import Path
 from host import gcode, svg
 from host.card import Card
 from host.check import check
-from host.geometry import dimension
-from host.pin_measure import deviation, junction_gaps, pin_moves
+from host.geometry import Arc, dimension
+from host.pin_measure import deviation, junction_gaps, pin_moves, pin_moves_of_points
 from host.planner import plan
 from host.selftest import selftest
 from host.stream import Stopped, stream
+from host.errors import ProgramError
 from host.transports import SIM_KINDS, open_transport
 from models.sim_machine import MachineConfig
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
-SIMULATED_AXES = (2,)  # the builds a simulated card can be today (the N-axis card is not built yet)
+
+
+def refuse_unbuilt(drawing):
+    """ProgramError at the first line of ``drawing`` the card does not run yet
+    (docs/axes.md: an ARC with HELIX is refused, RANGE, not built yet), before
+    anything moves."""
+    for item in drawing:
+        if isinstance(item, Arc) and item.rise:
+            raise ProgramError(item.where, "a helical arc (an axis outside the plane moves with it): the card "
+                                           "does not run HELIX yet (docs/axes.md)")
 
 
 def add_commands(commands, positive, scales, count, axis_count):
@@ -40,9 +50,8 @@ def add_commands(commands, positive, scales, count, axis_count):
     run.add_argument("file", help="G-code program, or an .svg drawing")
     card_options(run)
     run.add_argument("--axes", type=axis_count,
-                     help="the card's axes: a simulated card of this build (2 only, for now: the N-axis card "
-                          "is not built yet); a real card must report it in BUILD.AXES (default: what the card "
-                          "reports)")
+                     help="the card's axes: a simulated card of this build (python -m rtl.top --axes N; default "
+                          "2); a real card must report it in BUILD.AXES (default: what the card reports)")
     run.add_argument("--steps-per-mm", type=scales, default=(200.0,), metavar="X[,Y,...]",
                      help="steps per mm of each axis (per degree for A, B, C): one value for all, or one per "
                           "axis of the card (default 200)")
@@ -91,9 +100,6 @@ def run_command(options, refuse, per_axis):
     """``run``; the exit code."""
     spec = card_spec(options, refuse)
     path = Path(options.file)
-    if options.axes is not None and spec in SIM_KINDS and options.axes not in SIMULATED_AXES:
-        refuse(f"--axes {options.axes}: the simulated card has {', '.join(map(str, SIMULATED_AXES))} axes; the "
-               "N-axis card is not built yet (plan for it with: python -m host plan FILE --axes N)")
     if not path.is_file():
         refuse(f"{path}: no such file")
     if options.preview:
@@ -111,13 +117,17 @@ def run_command(options, refuse, per_axis):
     drawing = [dataclasses.replace(item, feed=item.feed * scale) if getattr(item, "feed", None) else item
                for item in drawing]
     wall = time.monotonic()
-    with open_transport(spec, **transport_options(options, spec, refuse)) as transport:
+    opening = transport_options(options, spec, refuse)
+    if options.axes is not None and spec in SIM_KINDS:
+        opening["axes"] = options.axes
+    with open_transport(spec, **opening) as transport:
         card = Card(transport)
         axes = card.identity.axes
         if options.axes is not None and options.axes != axes:
             raise ValueError(f"--axes {options.axes}: the card reports {axes} axes (BUILD.AXES)")
         if path.suffix.lower() != ".svg" and dimension(drawing) > axes:
             gcode.parse(path.read_text(), path.name, axes)  # refuses the first line that needs more axes
+        refuse_unbuilt(drawing)
         machine = card.configure(steps_per_mm=per_axis(options.steps_per_mm, axes, _raise),
                                  step_width_ns=options.step_width_ns,
                                  dir_setup_ns=options.dir_setup_ns, dir_hold_ns=options.dir_hold_ns,
@@ -129,7 +139,7 @@ def run_command(options, refuse, per_axis):
         print(f"job:        {len(drawing)} segments, {len(planned.entries)} commands, "
               f"{len(planned.words())} words, {len(planned.runs)} runs")
         first_clock = transport.clocks
-        first_rise = len(transport.pins.rises) if transport.pins is not None else 0
+        first_rise = len(_pin_rises(transport.pins, axes)) if transport.pins is not None else 0
         stop = _StopRequest()
         try:
             result = stream(card, planned, options.low_water, _progress_bar(), stop)
@@ -145,17 +155,35 @@ def run_command(options, refuse, per_axis):
             stop.restore()
         print(f"streamed:   {result.words} words in {result.bursts} bursts, {result.interrupts} interrupts, "
               f"{len(result.marks)} MARKs read back")
-        print(f"position:   {result.position} steps (plan: {planned.end})")
+        # POS_X, POS_Y: the other axes have no position register yet; a simulated card's pins tell them
+        registers = "" if axes == 2 else " (POS_X, POS_Y)"
+        print(f"position:   {result.position} steps{registers} (plan: {planned.end})")
         print(f"job time:   {model.job_seconds:.4f} s planned; {result.seconds:.4f} s of card time")
+        ended = result.position == tuple(planned.end[:len(result.position)])
         if transport.clocks is not None:
-            _pins_report(planned, model, transport, first_rise, options.preview, card.timing["DIR_SETUP"])
+            pins_end = _pins_report(planned, model, transport, first_rise, options.preview, card.timing["DIR_SETUP"],
+                                    axes)
+            if axes > 2:
+                print(f"pins end:   {pins_end} steps (plan: {planned.end})")
+                ended = ended and pins_end == tuple(planned.end)
             print(f"simulated:  {transport.clocks - first_clock} clocks, wall time {time.monotonic() - wall:.1f} s")
-    return 0 if result.position == planned.end else 1
+    return 0 if ended else 1
 
 
-def _pins_report(planned, model, transport, first_rise, preview, dir_setup):
-    rises = transport.pins.rises[first_rise:]
-    moves = pin_moves(planned, model, rises)
+def _pin_rises(pins, axes):
+    """The STEP rises of a simulated card: (clock, x, y, dir x, dir y) on two axes; on more,
+    (clock, point) with the point from the card's start (``PinLog.axis_rises``)."""
+    return pins.rises if axes == 2 else pins.axis_rises(axes)
+
+
+def _pins_report(planned, model, transport, first_rise, preview, dir_setup, axes):
+    """Print the pins' path against the golden model's and the drawing; the point it ended on."""
+    rises = _pin_rises(transport.pins, axes)[first_rise:]
+    if axes == 2:
+        moves = pin_moves(planned, model, rises)
+    else:
+        before = _pin_rises(transport.pins, axes)[first_rise - 1][1] if first_rise else (0,) * axes
+        moves = pin_moves_of_points(model, [before] + [point for _, point in rises])
     ideal = [p for _, points in model.points for p in points[1:]]
     got = [p for _, points in moves for p in points[1:]]
     mm, steps, where = deviation(planned, moves)
@@ -170,6 +198,7 @@ def _pins_report(planned, model, transport, first_rise, preview, dir_setup):
              title=f"the card's STEP/DIR pins (blue: fed, orange: rapid) over the drawing (grey); "
                    f"max deviation {steps:.2f} steps")
         print(f"preview:    {preview}")
+    return moves[-1][1][-1] if moves else None
 
 
 def _raise(message):

@@ -46,7 +46,12 @@ def move_rises(check):
 
 def pin_moves(plan, check, rises):
     """[(primitive index, [(x, y) ...])] per move, from the pins (``rises`` of the job only)."""
-    points = pin_points(rises)
+    return pin_moves_of_points(check, pin_points(rises))
+
+
+def pin_moves_of_points(check, points):
+    """[(primitive index, [point ...])] per move, from the points the pins visited (the
+    job's start first, then one a clock with a STEP rise; any number of axes)."""
     moves, first = [], 0
     for (primitive, _), count in zip(check.points, move_rises(check)):
         moves.append((primitive, points[first:first + count + 1]))
@@ -72,7 +77,8 @@ def _moves(plan):
 
 
 def junction_gaps(plan, check, rises, dir_setup=1):
-    """(junctions measured, [(clock, interval, allowed, where)] of those over the bound)."""
+    """(junctions measured, [(clock, interval, allowed, where)] of those over the bound);
+    ``rises``: one tuple a clock with a STEP rise, its clock first."""
     clocks = [r[0] for r in rises]
     entries = _moves(plan)
     measured, over = 0, []

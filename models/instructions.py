@@ -15,8 +15,8 @@ Two forms (docs/axes.md):
   V_AXIS, HELIX, PULSE.AXES) and operands that follow an axis mask
   (``Opcode.axis_operands``): ``operand_names`` lists a header's operands.
   With every axis field 0 it is the two-axis form, word for word.  The
-  card in ``gen/`` is still the two-axis card: an axis field not 0 is
-  RESERVED_BITS there.
+  card frames every command by this form (``rtl/regs/command_header.py``)
+  and refuses what its axes cannot run with RANGE (docs/axes.md).
 """
 from dataclasses import dataclass
 
@@ -242,7 +242,7 @@ def markdown():
              "Generated from `models/instructions.py`.  Opcode in header bits 31:28; header bits",
              "outside the listed fields must be 0.  The N-axis form's fields and operands",
              "([axes.md](axes.md)) are marked N-axis; with those fields 0 a command is the",
-             "two-axis form, which the card in `gen/` (two axes) decodes.", "",
+             "two-axis form.  The card frames every command by the N-axis form.", "",
              "| opcode | name | header fields | operand words | meaning |",
              "| --- | --- | --- | --- | --- |"]
     for op in OPCODES:

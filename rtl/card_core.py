@@ -2,14 +2,14 @@
 from myhdl import ResetSignal, Signal, always_comb, block
 
 from models.parameters import Build
-from rtl.dda_arc import dda_arc
-from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
+from rtl.dda.dda_axes import dda_axes
+from rtl.interfaces import AxesCommand, AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
 
 
 @block
 def card_core(clock, reset, local, irq, pins, *, build=Build()):
-    """``regs_fifo`` and ``dda_arc`` wired together.
+    """``regs_fifo`` and the interpolator (``dda_axes``: ``dda_arc`` in any plane, the N-axis line) wired together.
 
     Ports: ``local`` (the PCI target's back end), ``irq`` (to INTA#),
     ``pins`` (STEP/DIR of the build's ``axes``).  COMMAND.SOFT_RESET resets the DDA through its
@@ -27,7 +27,8 @@ def card_core(clock, reset, local, irq, pins, *, build=Build()):
         dda reset   ~~~~~\\___/~~~~~~
     """
     dda = DdaPort(build.coord_width, build.variants)
-    steps = AxisPulses()
+    axes_cmd = AxesCommand(build.axes, build.coord_width)
+    steps = AxisPulses(build.axes)
     core_clear = Signal(bool(0))
     dda_reset = ResetSignal(1, active=0, isasync=True)
 
@@ -35,8 +36,8 @@ def card_core(clock, reset, local, irq, pins, *, build=Build()):
     def combine_resets():
         dda_reset.next = reset and not core_clear
 
-    registers = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, build=build)
-    interpolator = dda_arc(clock, dda_reset, dda, steps)
+    registers = regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, build=build)
+    interpolator = dda_axes(clock, dda_reset, dda, axes_cmd, steps)
     return combine_resets, registers, interpolator
 
 

@@ -5,7 +5,7 @@ from models import registers as regmap
 from models.axes import AXIS_NAMES
 from models.dda_build import variants_choice
 from models.parameters import COORD_WIDTH, Build
-from rtl.interfaces import (AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
+from rtl.interfaces import (AxesCommand, AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
                             InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl,
                             RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords,
                             StepPositions, StepRequest, card_reset)
@@ -31,7 +31,7 @@ def _bit(name, field_name):
 # docstring names are its fields, its coord_width and variants those of ``dda``
 # (the docstring is gen/regs_fifo.v's header).
 @block
-def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=Build()):
+def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, *, build=Build()):
     """The card behind the PCI target: everything of the paper's figure 1 but the DDA.
 
     Ports: ``local`` (the target's back end; space 0 = the registers of
@@ -42,8 +42,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     three free places, the promise the target needs before it acknowledges
     a posted dword, and a write to a full FIFO answers ``retry``, so the
     target retries or disconnects and no word is lost); ``dda`` (drives the
-    interpolator's command, reads its status); ``steps`` (the interpolator's
-    step requests); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
+    interpolator's command, reads its status); ``axes_cmd`` (the plane and
+    a LINE's displacements for the N-axis interpolator, ``AxesCommand``);
+    ``steps`` (the interpolator's step requests, every axis); ``pins`` (STEP/DIR and DRIVE_ENABLE out, the machine
     inputs in: ``input_filter`` and ``machine_guard`` watch them, and a
     stop resets and holds the sequencer, the direct pulses and the pulse
     outputs and resets the DDA; the FIFO keeps its words until
@@ -82,8 +83,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     if (dda.coord_width, variants_choice(dda.variants)) != (build.coord_width, build.variants):
         raise ValueError(f"regs_fifo: dda is a {dda.coord_width}-bit DdaPort of the variants "
                          f"{variants_choice(dda.variants)}, the build says {build.coord_width} and {build.variants}")
-    if pins.axes != build.axes:
-        raise ValueError(f"regs_fifo: pins of {pins.axes} axes, the build says {build.axes}")
+    if (pins.axes, steps.axes, axes_cmd.axes) != (build.axes,) * 3:
+        raise ValueError(f"regs_fifo: pins, steps and axes_cmd of {pins.axes}, {steps.axes} and {axes_cmd.axes} axes, "
+                         f"the build says {build.axes}")
     fifo_depth, axes = build.fifo_depth, build.axes
     # BAR0's registers, then those only the per-axis blocks of Z, A, ... have (models/registers.py)
     specs = regmap.REGISTERS + regmap.axis_registers(axes)
@@ -123,7 +125,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     clear_position, direct_mode = Signal(bool(0)), Signal(bool(0))
     pulses = PulseCommand(axes)
     pulse_busy, outputs_busy, seq_load = pulses.busy, pulses.outputs_busy, pulses.load
-    # every axis's step requests: the DDA's ``steps`` (X and Y) and the direct pulses of every axis
+    # every axis's step requests: the interpolator's ``steps`` and the direct pulses of every axis
     requests, granted = AxisPulses(axes), AxisPulses(axes)
     requested = ConcatSignal(*reversed([requests.step(axis) for axis in range(axes)]))
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
@@ -163,7 +165,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
                               chain_in=chain[i], chain_out=chain[i + 1], aliases=aliases.get(spec.offset, ())))
     units.append(sequencer(clock, reset, fifo=FifoRead(dout=fifo_dout, empty=fifo_empty, pop=fifo_pop),
-                           control=seq_control, dda=dda, pulses=pulses, set_port=set_port, mark=mark,
+                           control=seq_control, dda=dda, axes_cmd=axes_cmd, pulses=pulses, set_port=set_port, mark=mark,
                            set_indices=tuple(regmap.SET_TARGETS)))
     settings = RampSettings(target=values["FEED_RATE"], ramp_start=values["RAMP_START"],
                             ramp_step=values["RAMP_STEP"])
@@ -344,8 +346,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     for axis, name in enumerate(axis_names):
         units.append(pulse_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"], halt,
                                   values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))
-        if axis >= 2:   # the DDA's steps reach X and Y (dda.py), the direct pulses every axis
-            units.append(_direct_only(direct_out[axis], requests.step(axis), requests.dir(axis)))
+        if axis >= 2:   # X's and Y's: merge_requests
+            units.append(_axis_request(steps.step(axis), steps.dir(axis), direct_out[axis], requests.step(axis),
+                                       requests.dir(axis)))
     status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
@@ -358,21 +361,23 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
 
 
 @block
-def _direct_only(out, step, direction):
-    """An axis only the direct pulses drive: its step requests are theirs."""
+def _axis_request(step, direction, out, request, request_dir):
+    """Axis Z, A, ...: the interpolator's step (``step``, ``direction``) or else
+    the axis's direct pulse (``out``), as ``merge_requests`` does for X and Y."""
 
     @always_comb
-    def pass_on():
-        step.next = out.step
-        direction.next = out.dir
+    def merge():
+        request.next = step or out.step
+        request_dir.next = direction if step else out.dir
 
-    return pass_on
+    return merge
 
 
 def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
     ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``,
-    ``pins`` of ``axes`` axes (``steps``, the DDA's, has X and Y)."""
+    ``axes_cmd``, ``steps`` and ``pins`` of ``axes`` axes."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(axes),
+                dda=DdaPort(COORD_WIDTH.check(coord_width), variants),
+                axes_cmd=AxesCommand(axes, COORD_WIDTH.check(coord_width)), steps=AxisPulses(axes), pins=MotorPins(axes),
                 irq=Signal(bool(0)), core_clear=Signal(bool(0)))

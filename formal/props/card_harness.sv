@@ -156,7 +156,7 @@ module card_harness #(
     // operand words have arrived and executes it once CONTROL.ENABLE is set.
     reg [31:0] first_written = 0;   // the first word the host wrote: the first header
     reg [31:0] first_header = 0;    // that word, once the sequencer has taken its first word
-    reg [2:0] operands_due = 0;     // operand words of the first command not yet taken
+    reg [3:0] operands_due = 0;     // operand words of the first command not yet taken
     reg first_taken = 0;            // the first command's words have all been taken
     reg control_enable = 0;         // CONTROL.ENABLE and not MODE, as written on the bus
     reg [4:0] ready_for = 0;        // clocks since the first command was taken with ENABLE set
@@ -176,9 +176,9 @@ module card_harness #(
                 first_written <= ad;
             if (take && taken == 0) begin
                 first_header <= first_word;
-                operands_due <= operand_words(first_word[31:OPCODE_LSB]);
+                operands_due <= operand_words(first_word);
                 first_taken <= !opcode_known(first_word[31:OPCODE_LSB])
-                               || operand_words(first_word[31:OPCODE_LSB]) == 0;
+                               || operand_words(first_word) == 0;
             end else if (take && operands_due != 0) begin
                 operands_due <= operands_due - 1;
                 if (operands_due == 1) first_taken <= 1;

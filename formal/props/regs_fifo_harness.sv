@@ -147,13 +147,13 @@ module regs_fifo_harness #(
     // it never execute and need no check of their own.  A chosen-index shadow
     // keeps the words of one command.
     reg word_in = 0;                    // fifo_dout: a word popped in the last clock
-    reg [2:0] words_left = 0;           // operand words still to come
+    reg [3:0] words_left = 0;           // operand words still to come
     reg framing_lost = 0;               // an unknown opcode: no framing until a flush
     reg [4:0] moves_seen = 0, moves_started = 0, sets_seen = 0, sets_done = 0;
     reg picked = 0, picked_whole = 0;
     reg [3:0] picked_opcode = 0;
     reg [4:0] picked_number = 0;
-    reg [2:0] picked_words = 0;
+    reg [3:0] picked_words = 0;
     reg [31:0] picked_header = 0, picked_0 = 0, picked_1 = 0, picked_2 = 0, picked_3 = 0;
     reg [4:0] moves_before_dwell = 0, sets_before_dwell = 0;
     reg [31:0] dwell_elapsed = 0;       // clocks since the picked command's last word arrived
@@ -167,7 +167,7 @@ module regs_fifo_harness #(
             moves_seen <= 0; moves_started <= 0; sets_seen <= 0; sets_done <= 0;
         end else begin
             if (header_in) begin
-                if (opcode_known(arriving_opcode)) words_left <= operand_words(arriving_opcode);
+                if (opcode_known(arriving_opcode)) words_left <= operand_words(fifo_dout);
                 else framing_lost <= 1;
                 if (is_move) moves_seen <= moves_seen + 1;
                 if (arriving_opcode == OPCODE_SET) sets_seen <= sets_seen + 1;
@@ -198,7 +198,12 @@ module regs_fifo_harness #(
             if (set_strobe) sets_done <= sets_done + 1;
         end
     end
-    wire picked_starts = picked && picked_opcode != OPCODE_SET && dda_start && moves_started == picked_number;
+    // a LINE's axes: LINE.AXES, 0 standing for X and Y (a two-axis card runs no other)
+    wire [LINE_AXES_WIDTH-1:0] line_axes = picked_header[LINE_AXES_LSB +: LINE_AXES_WIDTH];
+    wire line_has_x = line_axes == 0 || line_axes[0], line_has_y = line_axes == 0 || line_axes[1];
+    // (a picked DWELL counts SETs: only a picked move is compared with a start)
+    wire picked_starts = picked && (picked_opcode == OPCODE_LINE || picked_opcode == OPCODE_ARC) && dda_start
+                         && moves_started == picked_number;
     wire picked_sets = picked && picked_opcode == OPCODE_SET && set_strobe && sets_done == picked_number;
     always @(posedge clock) if (reset_n) begin
         if (dda_start) begin cmd_start_for_a_move: assert(moves_started < moves_seen); end
@@ -207,8 +212,10 @@ module regs_fifo_harness #(
             cmd_move_as_written: assert(picked_whole && dda_line == (picked_opcode == OPCODE_LINE)
                 && dda_blend == picked_header[LINE_BLEND_LSB]   // BLEND: one field of LINE and ARC
                 && (picked_opcode == OPCODE_LINE
-                    ? dda_xs == 0 && dda_ys == 0 && dda_xe == picked_0[COORD_WIDTH-1:0]
-                      && dda_ye == picked_1[COORD_WIDTH-1:0]
+                    // LINE.AXES (docs/axes.md): X's displacement first, an axis not in the mask 0
+                    ? dda_xs == 0 && dda_ys == 0 && dda_xe == (line_has_x ? picked_0[COORD_WIDTH-1:0] : 0)
+                      && dda_ye == (!line_has_y ? 0 : line_has_x ? picked_1[COORD_WIDTH-1:0]
+                                                                 : picked_0[COORD_WIDTH-1:0])
                     : dda_ccw == picked_header[ARC_CCW_LSB]
                       && dda_variant == picked_header[ARC_VARIANT_LSB +: ARC_VARIANT_WIDTH]
                       && dda_lambda_shift == picked_header[ARC_LAMBDA_LSB +: ARC_LAMBDA_WIDTH]

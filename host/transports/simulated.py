@@ -25,7 +25,8 @@ class SimTransport(Transport):
     Verilator (always on for the others); ``clock_hz``: the Verilator card is
     built for it (its CLOCK_HZ reads it), the others for the default;
     ``machine``: a ``MachineConfig``, the simulated machine on the inputs;
-    ``axes``: the card's build (MyHDL and Verilator)."""
+    ``axes``: the card's build (``python -m rtl.top --axes N``: STEP/DIR of N axes
+    on ``pins``, BUILD.AXES = N)."""
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=CLOCK_HZ.default, monitor=True, machine=None,
                  axes=AXES.default):

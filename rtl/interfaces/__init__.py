@@ -14,11 +14,11 @@ lines are 0 when asserted).
 from rtl.interfaces.bundle import axis_suffixes, card_reset, named
 from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X,
                                  INPUT_LIMIT_POS_Y, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
-                                 TIMING_BITS, AxisBlock, DirectPulseCommand, FeedPort, FifoRead, MarkPort, MotorPins, PulseCommand,
-                                 PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl,
-                                 SetPort, StatusWords, StepPositions, StepRequest)
-from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxisPulses, DdaMove, DdaPlan, DdaPort, DdaRoot,
-                                DdaStep, LinearPort, SetupControl, SetupSequence)
+                                 TIMING_BITS, AxisBlock, CommandHeader, DirectPulseCommand, FeedPort, FifoRead, MarkPort,
+                                 MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
+                                 SequencerControl, SetPort, StatusWords, StepPositions, StepRequest)
+from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxesCommand, AxisPulses, DdaMove, DdaPlan, DdaPort,
+                                DdaRoot, DdaStep, LinearPort, SetupControl, SetupSequence, axis_index_bits)
 from rtl.interfaces.encoder import EncoderPins, EncoderPort, FollowingErrorPort, ProbePort, Timestamp
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBoundary, TargetBuffers, TargetControlNext,
@@ -29,10 +29,11 @@ __all__ = [
     "TargetState",
     "TargetDecode", "TargetParity", "TargetBuffers", "TargetRequests", "TargetTransaction", "TargetBoundary",
     "DdaPort", "DdaPlan", "DdaRoot", "SetupSequence", "SetupControl",
-    "DdaMove", "DdaStep", "LinearPort", "AxisPulses", "TARGET_ZERO", "TARGET_RADIUS", "TARGET_END", "Homing",
-    "InputConditioning",
+    "DdaMove", "DdaStep", "LinearPort", "AxisPulses", "AxesCommand", "axis_index_bits", "TARGET_ZERO", "TARGET_RADIUS",
+    "TARGET_END", "Homing", "InputConditioning",
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
-    "PULSE_COUNT_BITS", "TIMING_BITS", "AxisBlock", "FifoRead", "SequencerControl", "PulseCommand", "SetPort",
+    "PULSE_COUNT_BITS", "TIMING_BITS", "AxisBlock", "CommandHeader", "FifoRead", "SequencerControl", "PulseCommand",
+    "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
     "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
     "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y", "EncoderPins", "EncoderPort", "Timestamp",

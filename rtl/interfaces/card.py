@@ -94,6 +94,30 @@ class SequencerControl:
                discard_on_clear=Signal(bool(0)))
 
 
+class CommandHeader:
+    """A header word as ``rtl/regs/command_header.py`` reads it, for the
+    sequencer, which keeps what it needs when the word arrives: ``known``
+    (the opcode is in the table), ``moves`` (LINE or ARC), ``operands`` (the
+    operand words that follow it, N-axis form), ``reserved`` (a bit outside
+    the N-axis form's fields: RESERVED_BITS), ``has_operands`` (any
+    operand follows, from the opcode alone: a short path to the FIFO's
+    pop), ``out_of_range`` (the axis
+    fields break the card's rules: RANGE), the plane ``u``, ``v`` (axis
+    indices; X, Y for the 0/0 form and for every other command) and
+    ``slots`` (the operand registers its operands go to, in order: a LINE's
+    axes, all of them for the others).  ``axes``: the card's; ``slots``: how
+    many operand registers the sequencer has."""
+
+    def __init__(self, axes, slots, operands_max):
+        bits = max(1, (axes - 1).bit_length())
+        self.axes, self.slot_count = axes, slots
+        self.known, self.moves, self.has_operands = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+        self.operands = Signal(intbv(0, min=0, max=operands_max + 1))
+        self.reserved, self.out_of_range = Signal(bool(0)), Signal(bool(0))
+        self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
+        self.slots = Signal(intbv(0)[slots:])
+
+
 class PulseCommand:
     """The PULSE command's seam for ``axes`` axes: the sequencer drives ``load``
     (one clock) with ``mask`` (bit i: axis i takes its count; the others go on

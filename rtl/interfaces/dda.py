@@ -310,3 +310,31 @@ class LinearPort:
     def positive(self, axis):
         """Axis ``axis``'s direction (1: d >= 0)."""
         return getattr(self, f"positive_{axis_suffixes(self.axes)[axis]}")
+
+
+def axis_index_bits(axes):
+    """Bits of an axis index on a card of ``axes`` axes (1 for two axes)."""
+    return max(1, (axes - 1).bit_length())
+
+
+class AxesCommand:
+    """What the sequencer gives the N-axis interpolator (``rtl/dda/dda_axes.py``)
+    beside ``DdaPort``, read in the clock of ``DdaPort.start`` like the rest:
+    the plane ``u``, ``v`` (axis indices: an arc's (x, y) outputs step axes u
+    and v; X, Y for a line on a card of two axes) and, on a card of more
+    than two axes, each axis's signed displacement of a LINE
+    (``delta_<axis>``, ``coord_width`` bits: the line runs through
+    ``dda_linear``; on two axes a line is ``DdaPort``'s (``xe``, ``ye``))."""
+
+    def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
+        self.axes = axes
+        bits = axis_index_bits(axes)
+        self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
+        if axes > 2:
+            low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
+            for suffix in axis_suffixes(axes):
+                setattr(self, f"delta_{suffix}", Signal(intbv(0, min=low, max=high)))
+
+    def delta(self, axis):
+        """Axis ``axis``'s displacement of a LINE (cards of more than two axes)."""
+        return getattr(self, f"delta_{axis_suffixes(self.axes)[axis]}")

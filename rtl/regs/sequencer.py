@@ -1,9 +1,12 @@
 """Instruction register: fetches commands from the FIFO and executes them."""
-from myhdl import Signal, always_comb, always_seq, block, enum, intbv
+from myhdl import Signal, always_comb, always_seq, block, downrange, enum, intbv
 
 from models import instructions as isa
-from models.parameters import COORD_WIDTH
-from rtl.interfaces import DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl, SetPort, card_reset
+from models.parameters import AXES, COORD_WIDTH
+from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl,
+                            SetPort, card_reset)
+from rtl.regs.command_header import command_header
+from rtl.regs.operand_register import operand_register, signed_low
 
 
 def _opcode_rom(value_of):
@@ -11,8 +14,19 @@ def _opcode_rom(value_of):
     return tuple(value_of(isa.BY_CODE[code]) if code in isa.BY_CODE else 0 for code in range(16))
 
 
-def _operand_mask(op, names):
-    return sum(1 << i for i, name in enumerate(op.operands) if name in names)
+def _operand_mask(op, kind):
+    """Bit i: operand i of ``op`` is ``kind`` ("coord": signed steps of a move,
+    "count": a PULSE count), whatever the axis mask (the longest form)."""
+    spec = op.axis_operands
+    names = isa.operand_names(op, {spec.field: (1 << isa.AXIS_MASK_WIDTH) - 1}) if spec else op.operands
+    is_kind = (lambda name: name.startswith("COUNT_")) if kind == "count" else (
+        lambda name: name in isa.SIGNED_OPERANDS and not name.startswith("COUNT_"))
+    return sum(1 << i for i, name in enumerate(names) if is_kind(name))
+
+
+# the most operand words a header frames: the fixed ones, the lead ones and one per bit of a full axis mask
+OPERANDS_MAX = max(len(op.fixed_operands) + (len(op.axis_operands.lead) + isa.AXIS_MASK_WIDTH
+                                             if op.axis_operands else 0) for op in isa.OPCODES)
 
 
 def _field(op_name, field_name):
@@ -23,15 +37,21 @@ def _field(op_name, field_name):
 
 
 @block
-def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_indices=(0,)):
+def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark, *, set_indices=(0,)):
     """Fetch, check and execute the FIFO's commands (``docs/instructions.md``).
 
     Ports (``rtl/interfaces/``): ``fifo`` (``FifoRead``), ``control``
-    (``SequencerControl``), ``dda`` (``DdaPort``), ``pulses``
-    (``PulseCommand``), ``set_port`` (``SetPort``), ``mark`` (``MarkPort``).
+    (``SequencerControl``), ``dda`` (``DdaPort``), ``axes_cmd``
+    (``AxesCommand``: the plane, and a LINE's displacements on a card of
+    more than two axes), ``pulses`` (``PulseCommand``), ``set_port``
+    (``SetPort``), ``mark`` (``MarkPort``).
     Fetch: the FIFO is read one word per clock (``fifo.pop``; the word
     arrives in ``fifo.dout`` the next clock) into the next-instruction
-    register while the current command runs.  Execute: LINE/ARC drive
+    register while the current command runs; ``command_header`` frames it
+    by the N-axis form (docs/axes.md) and each operand goes to the lowest
+    operand register left of those the header names (a LINE's: its axes',
+    the others are cleared; otherwise in order), so a LINE's displacement of
+    axis i is in register i.  Execute: LINE/ARC drive
     ``dda`` (a one-clock ``start`` with the operands and BLEND) as soon as
     the DDA is ``ready``, also while the move before still runs, so chained
     segments leave no gap; PULSE loads both direct pulse generators
@@ -40,7 +60,9 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     (``pulses.outputs_busy`` low: no step request pending and the last step
     has left the pins); SET gives a ``set_port.strobe`` with its index and
     value; MARK a ``mark.strobe`` with its tag.  An ARC whose VARIANT the DDA
-    was not built with (``dda.variants``) is malformed (RANGE).  SET, DWELL, MARK, PULSE and
+    was not built with (``dda.variants``) is malformed (RANGE), as is a
+    command whose axis fields break the card's rules (``command_header``).
+    SET, DWELL, MARK, PULSE and
     a malformed command wait until the motion before them has ended (DDA
     idle, outputs quiet), so a MARK means "reached" and the moves before a
     bad command complete.  A malformed command, or a move the DDA rejects,
@@ -53,7 +75,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     ``control.motion_run``: a path is under way (feed-rate ramp; high across
     chained segments).  ARC/LINE operands must fit ``dda.coord_width``,
     PULSE counts ``pulses.count_x``'s width.  Parameter: ``set_indices`` (SET
-    indices that exist).
+    indices that exist); the card's axes are ``axes_cmd.axes``.
 
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         fifo_pop  _/~~~~~~~~~~~\\_______________     LINE: 3 words
@@ -61,53 +83,52 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
         dda.start _________________/~~~\\_______     (dda.ready high)
     """
     coord_width, count_bits, error_bits = dda.coord_width, len(pulses.count_x), len(control.error_code)
+    axes = axes_cmd.axes
     seq_t = enum("S_IDLE", "S_MOTION", "S_PULSE", "S_DWELL", "S_ERROR")
     state = Signal(seq_t.S_IDLE)
     # the instruction register keeps the bits something reads: the opcode, the
-    # header's fields, SET's and DWELL's 32-bit operand 0, and of the other
-    # operands the coordinate and count bits (their checks read the arriving word)
+    # two-axis form's header fields, the plane, SET's and DWELL's 32-bit operand 0,
+    # and of the other operands the coordinate and count bits (their checks read
+    # the arriving word); a card of N axes has max(4, N) operand registers (an
+    # ARC's four, a LINE's N: a HELIX's operands are checked, not kept: not built yet)
     field_bits = max(lsb + width for op in isa.OPCODES for _, lsb, width, _ in op.header_fields)
     if field_bits > isa.OPCODE_LSB:
         raise ValueError("the header's fields overlap the opcode")
     header = Signal(intbv(0)[field_bits:])
-    if isa.MAX_OPERANDS != 4:
-        raise ValueError("the instruction register holds four operand words")
-    operand_0 = Signal(intbv(0)[32:])
-    operand_1 = Signal(intbv(0)[max(coord_width, count_bits):])
-    operand_2, operand_3 = Signal(intbv(0)[coord_width:]), Signal(intbv(0)[coord_width:])
-    operand_1_bits = len(operand_1)
-    fetched = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 2))
+    slot_count = max(len(isa.BY_NAME["ARC"].fixed_operands), axes)
+    operands = ([Signal(intbv(0)[32:]), Signal(intbv(0)[max(coord_width, count_bits):])]
+                + [Signal(intbv(0)[coord_width:]) for _ in range(2, slot_count)])
+    operand_0, operand_1, operand_2, operand_3 = operands[:4]
+    arriving = CommandHeader(axes, slot_count, OPERANDS_MAX)
+    slots_left, slot_taken = Signal(intbv(0)[slot_count:]), Signal(intbv(0)[slot_count:])
+    plane_u, plane_v = Signal(intbv(0)[len(axes_cmd.u):]), Signal(intbv(1)[len(axes_cmd.v):])
+    fetched = Signal(intbv(0, min=0, max=OPERANDS_MAX + 1))
     word_due = Signal(bool(0))
     next_valid = Signal(bool(0))
     next_error = Signal(intbv(0)[len(control.error_code):])
-    next_motion, arriving_moves = Signal(bool(0)), Signal(bool(0))
+    next_motion = Signal(bool(0))
     issue = Signal(bool(0))
     finishing = Signal(bool(0))
     state_over = Signal(bool(0))
     motion_done = Signal(bool(0))
     discard = Signal(bool(0))
     dwell_left = Signal(intbv(0)[32:])
+    line_in = Signal(bool(0))
 
-    arriving_count = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 1))
-    next_count = Signal(intbv(0, min=0, max=isa.MAX_OPERANDS + 1))
-    next_known = Signal(bool(0))  # of the arriving word, like the masks and set_known
+    next_count = Signal(intbv(0, min=0, max=OPERANDS_MAX + 1))
     opcode = Signal(intbv(0)[32 - isa.OPCODE_LSB:])
-    mask_high = Signal(intbv(0)[16:])
-    mask_low = Signal(intbv(0)[16:])
-    coord_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
-    count_mask = Signal(intbv(0)[isa.MAX_OPERANDS:])
+    # which operands must fit: those the registers keep (a command with more operands is refused anyway)
+    coord_mask = Signal(intbv(0)[slot_count:])
+    count_mask = Signal(intbv(0)[slot_count:])
     set_known = Signal(bool(0))
     variant_built = Signal(bool(0))  # the arriving header's ARC.VARIANT is one the DDA has
     # the checks, made as the words arrive and kept beside them (no deep logic before the issue)
-    bad_opcode, bad_header_bits, bad_set_index, bad_operand, bad_variant = (Signal(bool(0)) for _ in range(5))
+    bad_opcode, bad_header_bits, bad_set_index, bad_operand, bad_variant, bad_axes = (
+        Signal(bool(0)) for _ in range(6))
     arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
-    opcode_known = _opcode_rom(lambda op: 1)
-    opcode_moves = _opcode_rom(lambda op: int(op.name in ("LINE", "ARC")))
-    operand_count = _opcode_rom(lambda op: len(op.operands))
-    header_mask_high = _opcode_rom(lambda op: op.header_mask >> 16)
-    header_mask_low = _opcode_rom(lambda op: op.header_mask & 0xFFFF)
-    coord_operands = _opcode_rom(lambda op: _operand_mask(op, ("DX", "DY", "XS", "YS", "XE", "YE")))
-    count_operands = _opcode_rom(lambda op: _operand_mask(op, ("COUNT_X", "COUNT_Y")))
+    kept = (1 << slot_count) - 1
+    coord_operands = _opcode_rom(lambda op: _operand_mask(op, "coord") & kept)
+    count_operands = _opcode_rom(lambda op: _operand_mask(op, "count") & kept)
     set_ok = tuple(int(i in set_indices) for i in range(1 << len(set_port.index)))
     built = tuple(int(code in dda.variants) for code in range(1 << len(dda.variant)))
     code = {op.name: op.code for op in isa.OPCODES}
@@ -124,30 +145,10 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
     acc_lsb, acc_msb = _field("ARC", "ACC_BITS")
     index_lsb, index_msb = _field("SET", "INDEX")
     tag_lsb, tag_msb = _field("MARK", "TAG")
-
-    @always_comb
-    def lookup_arriving():
-        arriving_count.next = operand_count[fifo.dout[32:isa.OPCODE_LSB]]
-
-    @always_comb
-    def lookup_arriving_kind():
-        arriving_moves.next = opcode_moves[fifo.dout[32:isa.OPCODE_LSB]]
-
-    @always_comb
-    def lookup_count():
-        next_count.next = operand_count[opcode]
-
-    @always_comb
-    def lookup_valid():
-        next_known.next = opcode_known[fifo.dout[32:isa.OPCODE_LSB]]
-
-    @always_comb
-    def lookup_mask_high():
-        mask_high.next = header_mask_high[fifo.dout[32:isa.OPCODE_LSB]]
-
-    @always_comb
-    def lookup_mask_low():
-        mask_low.next = header_mask_low[fifo.dout[32:isa.OPCODE_LSB]]
+    reading = command_header(fifo.dout, arriving)
+    # an operand goes to the lowest register left (a LINE header clears those of its card's axes)
+    registers = [operand_register(clock, reset, fifo.dout, slot_taken(index), line_in if index < axes else None,
+                                   register) for index, register in enumerate(operands)]
 
     @always_comb
     def lookup_coords():
@@ -170,11 +171,24 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
         more = True
         if word_due:
             if fetched == 0:
-                more = arriving_count != 0
+                more = arriving.has_operands == 1
             else:
                 more = fetched < next_count
         fifo.pop.next = (not fifo.empty and not next_valid and more and not control.clear
                          and state != seq_t.S_ERROR)
+
+    @always_comb
+    def operand_routing():
+        # the lowest register left takes an arriving operand word; a LINE header clears its axes' registers
+        line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
+                        and not control.clear and not discard)
+        taken = intbv(0)[slot_count:]
+        if word_due and fetched != 0 and not control.clear and not discard:
+            for index in downrange(slot_count):
+                if slots_left[index]:
+                    taken[:] = 0
+                    taken[index] = 1
+        slot_taken.next = taken
 
     @always_comb
     def discarding():
@@ -195,27 +209,25 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
                 if fetched == 0:
                     opcode.next = fifo.dout[32:isa.OPCODE_LSB]
                     header.next = fifo.dout[field_bits:]
-                    next_motion.next = arriving_moves
-                    bad_opcode.next = not next_known
-                    bad_header_bits.next = (fifo.dout[32:16] & ~mask_high) != 0 or (fifo.dout[16:] & ~mask_low) != 0
+                    next_motion.next = arriving.moves
+                    next_count.next = arriving.operands
+                    slots_left.next = arriving.slots
+                    plane_u.next = arriving.u
+                    plane_v.next = arriving.v
+                    bad_opcode.next = not arriving.known
+                    bad_header_bits.next = arriving.reserved
+                    bad_axes.next = arriving.out_of_range
                     bad_set_index.next = fifo.dout[32:isa.OPCODE_LSB] == set_op and not set_known
                     bad_variant.next = fifo.dout[32:isa.OPCODE_LSB] == arc_op and not variant_built
                     bad_operand.next = 0
-                    if arriving_count == 0:
+                    if not arriving.has_operands:
                         next_valid.next = 1
                     else:
                         fetched.next = 1
                 else:
-                    if fetched == 1:
-                        operand_0.next = fifo.dout
-                    elif fetched == 2:
-                        operand_1.next = fifo.dout[operand_1_bits:]
-                    elif fetched == 3:
-                        operand_2.next = fifo.dout[coord_width:]
-                    else:
-                        operand_3.next = fifo.dout[coord_width:]
-                    if ((coord_mask[fetched - 1] and not arriving_coord_fits)
-                            or (count_mask[fetched - 1] and not arriving_count_fits)):
+                    slots_left.next = slots_left & ~slot_taken
+                    if fetched <= slot_count and ((coord_mask[fetched - 1] and not arriving_coord_fits)
+                                                  or (count_mask[fetched - 1] and not arriving_count_fits)):
                         bad_operand.next = 1
                     if fetched == next_count:
                         next_valid.next = 1
@@ -231,7 +243,7 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
             result[:] = E_BAD_OPCODE
         elif bad_header_bits:
             result[:] = E_RESERVED_BITS
-        elif bad_set_index or bad_operand or bad_variant:
+        elif bad_set_index or bad_operand or bad_variant or bad_axes:
             result[:] = E_RANGE
         next_error.next = result
 
@@ -343,6 +355,8 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
         set_port.index.next = header[index_msb:index_lsb]
         set_port.value.next = operand_0
         mark.tag.next = header[tag_msb:tag_lsb]
+        axes_cmd.u.next = plane_u
+        axes_cmd.v.next = plane_v
 
     @always_comb
     def report():
@@ -351,9 +365,11 @@ def sequencer(clock, reset, fifo, control, dda, pulses, set_port, mark, *, set_i
         control.motion_run.next = state == seq_t.S_MOTION
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
-    return (fits, lookup_arriving, lookup_arriving_kind, lookup_count, lookup_valid, lookup_mask_high, lookup_mask_low,
-            lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request, discarding, fetch, check, motion_status,
-            completion, readiness, issuing, execute, dwell_count, present, report)
+    # a card of more than two axes: a LINE's displacement of axis i is operand register i
+    deltas = [signed_low(operands[axis], axes_cmd.delta(axis)) for axis in range(axes)] if axes > 2 else []
+    return (fits, reading, registers, deltas, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
+            operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
+            dwell_count, present, report)
 
 
 @block
@@ -369,7 +385,8 @@ def _fits(operand, fits, width):
     return sign_extension
 
 
-def sequencer_ports(coord_width=COORD_WIDTH.default):
-    """Fresh ports of ``sequencer`` for conversion and benches."""
+def sequencer_ports(coord_width=COORD_WIDTH.default, axes=AXES.default):
+    """Fresh ports of ``sequencer`` for conversion and benches (a card of ``axes`` axes)."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), fifo=FifoRead(), control=SequencerControl(),
-                dda=DdaPort(coord_width), pulses=PulseCommand(), set_port=SetPort(), mark=MarkPort())
+                dda=DdaPort(coord_width), axes_cmd=AxesCommand(axes, coord_width), pulses=PulseCommand(),
+                set_port=SetPort(), mark=MarkPort())

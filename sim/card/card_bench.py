@@ -4,10 +4,12 @@ from dataclasses import dataclass, field
 from myhdl import StopSimulation, block, delay, instance, now
 
 from models import instructions as isa
+from models.axes import AXIS_NAMES
 from models import registers as regmap
 from models.card_model import PulseOutModel
 from models.dda_model import ArcCommand, iterate
-from models.parameters import Build
+from models.dda_axes import iterate_axes, move_start
+from models.parameters import COORD_WIDTH, Build
 from rtl.card_core import card_core, card_core_ports
 from sim.backends.clocking import clock_source
 from sim.backends.icarus import convert_and_cosimulate
@@ -34,13 +36,15 @@ MOTION_DISPLAY = dict(signed=POSITIONS + OPERANDS,
                       names={"sequencer.opcode": {op.code: op.name for op in isa.OPCODES}})
 
 
-PIN_BITS = {"step_x": 1, "dir_x": 2, "step_y": 4, "dir_y": 8}  # the pins' state as one number
+# the pins' state as one number: axis i's STEP at bit 2i, its DIR at bit 2i + 1 (X: 1, 2; Y: 4, 8)
+PIN_BITS = {f"{kind}_{name.lower()}": 1 << (2 * axis + bit) for axis, name in enumerate(AXIS_NAMES)
+            for bit, kind in enumerate(("step", "dir"))}
 
 
 @dataclass
 class PinLog:
     """Rises of the STEP pins: (clock, x stepped, y stepped, x dir pin, y dir pin);
-    ``edges``: every change of the four pins, (clock, state by ``PIN_BITS``).
+    ``edges``: every change of the STEP/DIR pins of every axis, (clock, state by ``PIN_BITS``).
     A clock is numbered by the rising edges before it: pins that change after
     edge n are recorded with clock n."""
     rises: list = field(default_factory=list)
@@ -56,6 +60,25 @@ class PinLog:
             y += (1 if dy != polarity[1] else -1) * sy
             points.append((x, y))
         return points
+
+    def axis_rises(self, axes, polarity=0):
+        """[(clock, point)] of every clock in which a STEP pin of ``axes`` axes rose (a clock's
+        rises together one point), from the edges; ``polarity``: bit i, axis i's DIR_POLARITY."""
+        here, before, result = [0] * axes, 0, []
+        for clock, state in self.edges:
+            rose = state & ~before
+            if any(rose >> (2 * axis) & 1 for axis in range(axes)):
+                for axis in range(axes):
+                    if rose >> (2 * axis) & 1:
+                        positive = bool(state >> (2 * axis + 1) & 1) != bool(polarity >> axis & 1)
+                        here[axis] += 1 if positive else -1
+                result.append((clock, tuple(here)))
+            before = state
+        return result
+
+    def axis_points(self, axes, polarity=0):
+        """The origin and the points of ``axis_rises``."""
+        return [(0,) * axes] + [point for _, point in self.axis_rises(axes, polarity)]
 
     def gaps(self):
         """Clocks between consecutive rises."""
@@ -86,7 +109,7 @@ def pin_capture(clock, pins, log):
             if sx or sy:
                 log.rises.append((log.clock, sx, sy, bool(pins.dir_x), bool(pins.dir_y)))
             before = now
-            state = sum(bit for name, bit in PIN_BITS.items() if getattr(pins, name))
+            state = sum(bit for name, bit in PIN_BITS.items() if getattr(pins, name, False))
             if state != state_before:
                 log.edges.append((log.clock, state))
             state_before = state
@@ -223,4 +246,16 @@ def expected_path(commands, coord_width=24):
             points += [(x0 + x - sx, y0 + y - sy) for x, y in path.points()[1:]]
         else:
             points += [(x0 + x, y0 + y) for x, y in path.points()[1:]]
+    return points
+
+
+def axes_path(commands, axes, coord_width=COORD_WIDTH.default):
+    """Points the golden model's moves of ``axes`` axes visit (``models.dda_axes.iterate_axes``),
+    chained from the origin (a diagonal is one point)."""
+    points = [(0,) * axes]
+    for command in commands:
+        path = iterate_axes(command, axes, coord_width=coord_width)
+        start = move_start(command, axes)
+        here = points[-1]
+        points += [tuple(h + p - s for h, p, s in zip(here, point, start)) for point in path.points()[1:]]
     return points

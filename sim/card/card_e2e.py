@@ -70,15 +70,13 @@ class CardUnderTest:
     """The card under test, with what the scenario needs to see: ``log`` (its
     pins), ``wait`` (the bench's ``CardWait``), ``samples`` (MyHDL and
     Icarus: the bus of every clock, values and drivers), ``io`` / ``mem`` /
-    ``alias`` (BAR0..2 bases, set once enumerated).  Called with a ``PciBench``, it is
-    that bench's target (MyHDL, Icarus).  ``axes``: the card's build (Icarus: the
-    two-axis top only)."""
+    ``alias`` (BAR0..2 bases, set once enumerated), ``axes`` (the build's), ``pins``
+    (the motor pins, MyHDL and Icarus).  Called
+    with a ``PciBench``, it is that bench's target (MyHDL, Icarus)."""
 
     def __init__(self, kind, fifo_depth, machine=None, axes=AXES.default):
         if kind not in KINDS:
             raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
-        if kind == "icarus" and axes != AXES.default:
-            raise ValueError("the Icarus card bench runs the two-axis top only")
         self.kind, self.fifo_depth, self.axes = kind, fifo_depth, AXES.check(axes)
         self.machine = machine   # a SimMachine on the input pins (MyHDL, Icarus; Verilator: in the harness)
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
@@ -90,9 +88,13 @@ class CardUnderTest:
     def __call__(self, bench):
         idsel_bit = 16 + TARGET_DEVICE
         if self.kind == "icarus":
-            top = generated_top() if self.fifo_depth == DEFAULT_FIFO else convert_top(fifo_depth=self.fifo_depth)
+            if (self.fifo_depth, self.axes) == (DEFAULT_FIFO, AXES.default):
+                top = generated_top()
+            else:
+                params = {"fifo_depth": self.fifo_depth, **({"axes": self.axes} if self.axes != AXES.default else {})}
+                top = convert_top(**params)
             harness = TopHarness(top, idsel_bit=idsel_bit)
-            agent, motor = harness.card, MotorPins()
+            agent, motor = harness.card, MotorPins(self.axes)
             def core(b):  # the X/Z report needs the bus model, which exists only later
                 return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
         else:
@@ -121,7 +123,7 @@ def bus_record(bench, samples):
 
 
 def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=None, card_trace=None, card_trace_window=None,
-             monitor=True):
+             monitor=True, axes=AXES.default):
     """Enumerate the card, run ``scenario(bench, target, out)``; (out, pin log,
     waveform or None, bench).  ``trace``: the bench's VCD (MyHDL, Icarus), as
     ``sim.backends.waves.run_traced`` takes it;
@@ -129,12 +131,12 @@ def run_card(kind, scenario, name, fifo_depth=SMALL_FIFO, trace=None, card_trace
     the clocks ``card_trace_window`` (first, last), named as the other back
     ends name their bench's (``sim.backends.waves.trace_stem``; the path is
     ``bench.trace_path``, the VCD comes back as the waveform); ``monitor`` (Verilator only; the MyHDL benches always
-    check): the protocol checker on every bus clock."""
-    target = CardUnderTest(kind, fifo_depth)
+    check): the protocol checker on every bus clock; ``axes``: the card's build."""
+    target = CardUnderTest(kind, fifo_depth, axes=axes)
     host_options = dict(max_retries=1 << 20)
     verilated = None
     if kind == "verilator":
-        verilated = VerilatedCard(card_verilog(fifo_depth), trace=card_trace, idsel_bit=16 + TARGET_DEVICE)
+        verilated = VerilatedCard(card_verilog(fifo_depth, axes=axes), trace=card_trace, idsel_bit=16 + TARGET_DEVICE)
         bench = VerilatorBench(verilated, target, host_options=host_options, monitor=monitor)
         if card_trace:
             first, last = card_trace_window or (0, 1 << 62)

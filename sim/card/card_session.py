@@ -62,8 +62,8 @@ class CardSession:
     ``read`` and ``write`` use, 0 (I/O) or 2 (the same registers at the same
     offsets in memory space, as a host maps them where it has no port I/O);
     offsets beyond BAR0 (the per-axis register blocks) go through BAR2
-    either way; ``axes``: the card's build (MyHDL and Verilator; Icarus runs
-    the two-axis top).
+    either way; ``axes``: the card's build (``--axes N``; the others of
+    ``Build`` as by default).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by

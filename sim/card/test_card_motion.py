@@ -24,7 +24,7 @@ from models.dda_build import DEFAULT_VARIANTS
 from models.dda_model import TRADITIONAL, ArcCommand, LineCommand, iterate, setup_clocks
 from models.parameters import Build
 from rtl.card_core import card_core, card_core_ports
-from rtl.interfaces import AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
+from rtl.interfaces import AxesCommand, AxisPulses, DdaPort, LocalBus, MotorPins, card_reset
 from rtl.regs_fifo import regs_fifo
 from sim.backends.icarus import convert_and_cosimulate
 from sim.backends.waves import run_traced
@@ -89,7 +89,7 @@ def motion_bench(kind, scenario, log, failures):
         clock, reset = Signal(bool(0)), card_reset()
         local, pins, irq = LocalBus(), MotorPins(), Signal(bool(0))
         dda, steps, core_clear = DdaPort(BUILD.coord_width, BUILD.variants), AxisPulses(), Signal(bool(0))
-        regs = regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, build=BUILD)
+        regs = regs_fifo(clock, reset, local, dda, AxesCommand(), steps, pins, irq, core_clear, build=BUILD)
         parts = [regs, contract_dda(clock, core_clear, dda, steps)]
     else:
         ports = card_core_ports()

@@ -108,3 +108,30 @@ def test_the_candidates_include_every_legal_arc():
         brute += 1
     listed = sum(1 for command, accepted in every_arc(starts=starts) if accepted and command.ccw)
     assert listed == brute > 0
+
+
+@pytest.fixture(scope="module")
+def axes_dda():
+    from sim.card.dda_axes_exhaustive import narrow_axes
+
+    narrow = narrow_axes()
+    yield narrow
+    narrow.close()
+
+
+def test_a_sample_of_3d_lines_equals_the_model(axes_dda):
+    from sim.card.dda_axes_exhaustive import run_lines, sample_lines
+
+    tally = run_lines(axes_dda, sample_lines(4000, seed=26))
+    # the start edge takes the line (it waits), the next edge loads it, the one after iterates it
+    assert tally.offsets["line"] == 2
+    assert tally.moves == 4000 and tally.mismatches == []
+
+
+@pytest.mark.slow(reason="every 3-D line of the 6-bit build: 262,144 lines on Verilator")
+def test_every_3d_line_equals_the_model(axes_dda):
+    from sim.card.dda_axes_exhaustive import every_line, run_lines
+
+    tally = run_lines(axes_dda, every_line())
+    assert tally.moves == 1 << (3 * NARROW_WIDTH)
+    assert tally.mismatches == []

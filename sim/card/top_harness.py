@@ -43,6 +43,7 @@ from pathlib import Path
 
 from myhdl import Signal, always, block, intbv, now
 
+from models.axes import AXIS_NAMES
 from rtl.convert import GEN_DIR, build_dir
 from rtl.interfaces import MACHINE_INPUTS
 from sim.backends.conversions import converted
@@ -54,7 +55,9 @@ TOP = "top"
 GEN_ENVIRONMENT = "DDA_CARD_GEN"
 ICE40_DEFINES = ("NO_ICE40_DEFAULT_ASSIGNMENTS",)  # Icarus has no default values on input ports
 PIN_PREFIX = "pci_pins_"
-MOTOR_OUTPUTS = ("motor_step_x", "motor_dir_x", "motor_step_y", "motor_dir_y", "motor_drive_enable")
+# STEP/DIR of every axis a build can have (a top has those of its axes) and DRIVE_ENABLE
+MOTOR_OUTPUTS = tuple(f"motor_{kind}_{name.lower()}" for name in AXIS_NAMES for kind in ("step", "dir")) + (
+    "motor_drive_enable",)
 MOTOR_INPUTS = tuple(f"motor_{name}" for name in MACHINE_INPUTS)
 DIRECT_PORTS = ("clock", "reset", *MOTOR_OUTPUTS, *MOTOR_INPUTS)
 
@@ -120,6 +123,7 @@ class TopHarness:
         body = _module_body(self.top_verilog.read_text(), TOP)
         self.ports = {name: (direction, int(msb or 0) + 1) for direction, msb, name in _PORT.findall(body)}
         self.cells = _pad_cells(body)
+        self.motor_outputs = [name for name in MOTOR_OUTPUTS if name in self.ports]
         unknown = [n for n in self.ports if not n.startswith(PIN_PREFIX) and n not in DIRECT_PORTS]
         if unknown:
             raise CosimError(f"{self.top_verilog}: ports {unknown} are neither PCI pins nor {DIRECT_PORTS}")
@@ -193,9 +197,9 @@ class TopHarness:
         ports.append("card_drive_unknown")
         declarations.append(f"output {_range(len(unknown))}card_drive_unknown;")
         body.append("assign card_drive_unknown = {\n    " + ",\n    ".join(reversed(unknown)) + "};")
-        motor = [*MOTOR_OUTPUTS, *MOTOR_INPUTS]
+        motor = [*self.motor_outputs, *MOTOR_INPUTS]
         ports += motor
-        declarations += [f"output {n};" for n in MOTOR_OUTPUTS] + [f"input {n};" for n in MOTOR_INPUTS]
+        declarations += [f"output {n};" for n in self.motor_outputs] + [f"input {n};" for n in MOTOR_INPUTS]
         connections = [".clock(clock)", ".reset(reset)"] + [f".{n}({n})" for n in motor]
         connections += [f".{PIN_PREFIX}{line}(bus_{line})" for line in LINE_WIDTHS]
         connections.append(f".{PIN_PREFIX}idsel(bus_idsel)")

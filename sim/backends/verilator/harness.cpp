@@ -6,7 +6,8 @@
 // The model's ports come from vc_ports.h, written by sim/vlt/build.py from
 // the model's own header (name, width, direction, address).  Nothing here
 // knows the card's internals: Python binds ports to roles by index (clock,
-// each PCI line's in / out / oe, IDSEL, the four motor pins).
+// each PCI line's in / out / oe, IDSEL, the STEP and DIR pins of up to six
+// axes: X, Y, Z, A, B, C, the ones the card lacks unbound).
 //
 // One clock (vc_tick): clock high, eval (the rising edge), pins sampled,
 // clock low, eval.  The clock count is the number of rising edges so far; an
@@ -46,7 +47,8 @@ const int kLineWidth[LINES] = {32, 4, 1, 1, 1, 1, 1, 1, 1, 1, 1};
 const bool kPulledUp[LINES] = {false, false, false, true, true, true, true, true, true, true, true};
 const bool kOpenDrain[LINES] = {false, false, false, false, false, false, false, false, false, true, true};
 
-enum Pin { STEP_X, DIR_X, STEP_Y, DIR_Y, PINS };
+enum Pin { STEP_X, DIR_X, STEP_Y, DIR_Y, PINS = 12 };   // axis i: STEP at bit 2i, DIR at 2i + 1
+const unsigned kStepBits = 0x555;
 
 // Why vc_run returned.
 enum Reason { LIMIT = 0, INTERRUPT = 1, STEPS = 2, BUS = 3 };
@@ -76,12 +78,12 @@ struct Card {
     int clock = -1;
     int line_in[LINES], line_out[LINES], line_oe[LINES];
     int idsel = -1, idsel_bit = 0;
-    int pins[PINS] = {-1, -1, -1, -1};
+    int pins[PINS];
     uint64_t clocks = 0;
     uint64_t step_rises = 0;
     unsigned pin_state = 0;
     std::vector<uint64_t> edge_clocks;
-    std::vector<uint8_t> edge_states;
+    std::vector<uint16_t> edge_states;
     Machine machine;
 #if VC_TRACE
     std::unique_ptr<TraceFile> trace;
@@ -90,6 +92,7 @@ struct Card {
 
     Card() {
         for (int line = 0; line < LINES; ++line) line_in[line] = line_out[line] = line_oe[line] = -1;
+        for (int pin = 0; pin < PINS; ++pin) pins[pin] = -1;
     }
 
     uint64_t get(int index) const { return read_port(ports[index]); }
@@ -151,9 +154,9 @@ struct Card {
         unsigned state = sample_pins();
         if (state != pin_state) {
             unsigned rose = state & ~pin_state;
-            step_rises += ((rose >> STEP_X) & 1) + ((rose >> STEP_Y) & 1);
+            step_rises += __builtin_popcount(rose & kStepBits);
             edge_clocks.push_back(clocks);
-            edge_states.push_back(static_cast<uint8_t>(state));
+            edge_states.push_back(static_cast<uint16_t>(state));
             pin_state = state;
         }
         if (machine.on) machine_clock(state);
@@ -420,10 +423,10 @@ void vc_machine_take_changes(void* handle, uint64_t* clocks, uint8_t* words) {
 uint64_t vc_edge_count(void* handle) { return static_cast<Card*>(handle)->edge_clocks.size(); }
 
 // Move the recorded edges into the caller's arrays (room for vc_edge_count()).
-void vc_take_edges(void* handle, uint64_t* clocks, uint8_t* states) {
+void vc_take_edges(void* handle, uint64_t* clocks, uint16_t* states) {
     Card* card = static_cast<Card*>(handle);
     std::memcpy(clocks, card->edge_clocks.data(), card->edge_clocks.size() * sizeof(uint64_t));
-    std::memcpy(states, card->edge_states.data(), card->edge_states.size());
+    std::memcpy(states, card->edge_states.data(), card->edge_states.size() * sizeof(uint16_t));
     card->edge_clocks.clear();
     card->edge_states.clear();
 }

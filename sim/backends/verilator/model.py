@@ -14,15 +14,18 @@ from pathlib import Path
 
 import numpy as np
 
+from models.axes import AXIS_NAMES
 from models.sim_machine import INPUTS
 from sim.backends.verilator.build import VerilatorError
 
 LINES = ("ad", "cbe", "par", "frame", "irdy", "trdy", "devsel", "stop", "perr", "serr", "inta")
-PINS = ("step_x", "dir_x", "step_y", "dir_y")  # bit i of an edge state is PINS[i]
+# bit i of an edge state is PINS[i]: STEP and DIR of X, Y, Z, A, B, C (a card's absent ones unbound)
+PINS = tuple(f"{kind}_{name.lower()}" for name in AXIS_NAMES for kind in ("step", "dir"))
 
 _u64, _int, _p = ctypes.c_uint64, ctypes.c_int, ctypes.c_void_p
 _u64_array = np.ctypeslib.ndpointer(np.uint64, flags="C_CONTIGUOUS")
 _u8_array = np.ctypeslib.ndpointer(np.uint8, flags="C_CONTIGUOUS")
+_u16_array = np.ctypeslib.ndpointer(np.uint16, flags="C_CONTIGUOUS")
 _int_array = np.ctypeslib.ndpointer(np.intc, flags="C_CONTIGUOUS")
 _SIGNATURES = {
     "vc_new": (_p, []),
@@ -45,7 +48,7 @@ _SIGNATURES = {
     "vc_tick": (None, [_p, _u64]),
     "vc_run": (_int, [_p, _u64, _int, _u64, ctypes.POINTER(_u64)]),
     "vc_edge_count": (_u64, [_p]),
-    "vc_take_edges": (None, [_p, _u64_array, _u8_array]),
+    "vc_take_edges": (None, [_p, _u64_array, _u16_array]),
     "vc_trace_open": (_int, [_p, ctypes.c_char_p, _u64, _u64, _u64]),
     "vc_machine_start": (None, [_p, _int_array, _int, ctypes.c_int64, ctypes.c_int64, _int, _int]),
     "vc_machine_switch": (None, [_p, _int, ctypes.c_int64, _int, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64,
@@ -130,8 +133,11 @@ class VerilatedModel:
         self._clock_bound = True
 
     def bind_pins(self, names):
-        """The four motor pins, in the order of ``PINS``."""
-        self._lib.vc_bind_pins(self._handle, np.array([self.index(n) for n in names], dtype=np.intc))
+        """The motor pins, in the order of ``PINS`` (a name the model lacks, or past the
+        names given: unbound)."""
+        indices = [self.index(n) if n in self.ports else -1 for n in names]
+        indices += [-1] * (len(PINS) - len(indices))   # the harness reads one index per pin of PINS
+        self._lib.vc_bind_pins(self._handle, np.array(indices, dtype=np.intc))
 
     def bind_bus(self, line_ports, idsel, idsel_bit):
         """``line_ports[line] = (in, out, oe)`` port names (None where absent)."""
@@ -195,9 +201,9 @@ class VerilatedModel:
 
     def take_edges(self):
         """(clocks, states) of the pin changes recorded since the last call, as
-        numpy arrays (uint64, uint8; bit i of a state is ``PINS[i]``)."""
+        numpy arrays (uint64, uint16; bit i of a state is ``PINS[i]``)."""
         count = self._lib.vc_edge_count(self._handle)
-        clocks, states = np.empty(count, np.uint64), np.empty(count, np.uint8)
+        clocks, states = np.empty(count, np.uint64), np.empty(count, np.uint16)
         if count:
             self._lib.vc_take_edges(self._handle, clocks, states)
         return clocks, states

@@ -25,8 +25,8 @@ TOP = "card"
 def rises(clocks, states, before=0):
     """PinLog-style rises ``(clock, x stepped, y stepped, dir x, dir y)`` from
     pin edges (``before``: the pins' state ahead of the first edge)."""
-    states = np.asarray(states, dtype=np.uint8)
-    previous = np.concatenate(([before], states[:-1])).astype(np.uint8)
+    states = np.asarray(states, dtype=np.uint16)
+    previous = np.concatenate(([before], states[:-1])).astype(np.uint16)
     rose = states & ~previous
     step_x, step_y = (rose & PIN_BITS["step_x"]) != 0, (rose & PIN_BITS["step_y"]) != 0
     keep = step_x | step_y

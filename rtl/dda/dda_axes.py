@@ -1,0 +1,208 @@
+"""The card's interpolator over N axes: the arc DDA in any plane, and the N-axis line."""
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+
+from rtl.dda.dda_linear import dda_linear
+from rtl.dda_arc import dda_arc
+from rtl.interfaces import AxesCommand, AxisPulses, DdaPort, LinearPort, card_reset, named
+
+# the command lines the arc DDA reads as the sequencer drives them
+_SHARED = ("line", "variant", "lambda_shift", "acc_bits", "ccw", "blend", "xs", "ys", "xe", "ye")
+
+
+@block
+def dda_axes(clock, reset, cmd, axes_cmd, steps):
+    """The interpolator of a card of N axes (``steps.axes``), one port to the sequencer.
+
+    Ports: ``cmd`` (``DdaPort``, as ``dda_arc`` takes it: ``start`` with the
+    command lines, ``advance``; ``ready``, ``busy``, ``done``, ``error``,
+    ``quadrant``, ``stop_left``), ``axes_cmd`` (``AxesCommand``: the plane,
+    a LINE's displacements; read with ``start``), ``steps`` (``AxisPulses``
+    of N axes).  Parameters: none; widths and variants from ``cmd``.
+
+    The arc DDA (``dda_arc``, unchanged) runs every ARC in its (u, v)
+    coordinates; ``_plane_queue`` keeps the plane of the move it runs and of
+    the one it sets up meanwhile, and ``_route_axis`` puts its x outputs on
+    axis u, its y outputs on axis v (STEP and DIR).  On two axes it runs the
+    lines too (on X, Y).  On more axes a LINE goes to ``dda_linear``
+    (``_line_queue``: its magnitudes wait in the line unit's port until the
+    moves before it have ended, then ``load``): the next ``advance`` after
+    the last iteration of the move before iterates it, so chained lines and
+    arcs leave no gap, exactly as chained arcs.  An ARC started while a line
+    runs is set up meanwhile and taken by the arc DDA's run, which gets no
+    ``advance`` until the line has ended.  ``stop_left``: the running
+    line's iterations left (all ones while it blends), the arc DDA's
+    otherwise; ``error`` of an arc rejected while a line runs comes when
+    the line has ended, and holds ``ready`` low so that nothing starts
+    after it.
+
+        clock    _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
+        advance  _/~~~\\___/~~~\\___/~~~\\_     last line iteration, then the arc's first
+        step_z   _____/~~~\\_______________     (the line's)
+        load     _________/~~~\\___________     the next line waits for the arc: not yet
+        step_x   _____________________/~~~     (the arc's u = X)
+    """
+    axes = steps.axes
+    if axes_cmd.axes != axes:
+        raise ValueError(f"dda_axes: axes_cmd of {axes_cmd.axes} axes, steps of {axes}")
+    arc_steps = AxisPulses(2)
+    u_run, v_run = Signal(intbv(0)[len(axes_cmd.u):]), Signal(intbv(1)[len(axes_cmd.v):])
+    if axes == 2:
+        arc = cmd
+        units = [dda_arc(clock, reset, arc, arc_steps),
+                 _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run)]
+        units += [named(f"route_{axis}", _route_axis(arc_steps, u_run, v_run, axis, None, None, steps.step(axis),
+                                                     steps.dir(axis))) for axis in range(axes)]
+        return units
+    arc = DdaPort(cmd.coord_width, cmd.variants)
+    for name in _SHARED:
+        setattr(arc, name, getattr(cmd, name))
+    line = LinearPort(axes, cmd.coord_width)
+    line_steps = AxisPulses(axes)
+    units = [dda_arc(clock, reset, arc, arc_steps),
+             _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run),
+             named("linear", dda_linear(clock, reset, line, line_steps)),
+             _line_queue(clock, reset, cmd, axes_cmd, arc, line)]
+    units += [named(f"route_{axis}", _route_axis(arc_steps, u_run, v_run, axis, line_steps.step(axis),
+                                                 line_steps.dir(axis), steps.step(axis), steps.dir(axis)))
+              for axis in range(axes)]
+    return units
+
+
+@block
+def _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run):
+    """The plane (``u_run``, ``v_run``) of the move the arc DDA runs: a move's
+    plane is taken at its ``start``, and becomes the running one then if no
+    other move is in the arc DDA (or the one there ends in that clock), else
+    at the ``done`` of the one before it.  A rejected move (``error``) ends
+    without ``done``: nothing else is in the arc DDA then."""
+    u_next, v_next = Signal(intbv(0)[len(u_run):]), Signal(intbv(1)[len(v_run):])
+    moves = Signal(intbv(0, min=0, max=3))   # moves started and not ended
+
+    @always_seq(clock.posedge, reset=reset)
+    def follow():
+        held = intbv(0, min=0, max=3)
+        if not arc.error:
+            held[:] = moves
+        if arc.done and held != 0:
+            held[:] = held - 1
+        if arc.start:
+            moves.next = held + 1
+            if held == 0:
+                u_run.next = axes_cmd.u
+                v_run.next = axes_cmd.v
+            else:
+                u_next.next = axes_cmd.u
+                v_next.next = axes_cmd.v
+        else:
+            moves.next = held
+            if arc.done and moves == 2:
+                u_run.next = u_next
+                v_run.next = v_next
+
+    return follow
+
+
+@block
+def _route_axis(arc_steps, u_run, v_run, axis, line_step, line_dir, step, direction):
+    """Axis ``axis``'s ``step`` and ``direction``: the arc DDA's x outputs when
+    it is the plane's u, its y outputs when it is v, the line unit's
+    (``line_step``, ``line_dir``; None on two axes) otherwise."""
+    if line_step is None:
+        @always_comb
+        def route():
+            step.next = (arc_steps.step_x and u_run == axis) or (arc_steps.step_y and v_run == axis)
+            direction.next = arc_steps.dir_y
+            if u_run == axis:
+                direction.next = arc_steps.dir_x
+    else:
+        @always_comb
+        def route():
+            step.next = (arc_steps.step_x and u_run == axis) or (arc_steps.step_y and v_run == axis) or line_step
+            direction.next = line_dir
+            if arc_steps.step_x and u_run == axis:
+                direction.next = arc_steps.dir_x
+            elif arc_steps.step_y and v_run == axis:
+                direction.next = arc_steps.dir_y
+
+    return route
+
+
+@block
+def _line_queue(clock, reset, cmd, axes_cmd, arc, line):
+    """A LINE started on ``cmd`` waits in ``line``'s magnitudes and signs
+    (``_line_magnitude``) until the moves before it have ended (the line
+    unit and the arc DDA idle), then loads.  The rest of ``cmd``: the arc
+    DDA's, merged with the line unit's (see ``dda_axes``)."""
+    axes = line.axes
+    waiting, waiting_blend, blend, last, loaded, stale = (Signal(bool(0)) for _ in range(6))
+    take = Signal(bool(0))
+    live_error = Signal(bool(0))
+    all_ones = (1 << len(cmd.stop_left)) - 1
+    pad = len(cmd.stop_left) - len(line.left)
+    magnitudes = [_line_magnitude(clock, take, axes_cmd.delta(axis), line.magnitude(axis), line.positive(axis))
+                  for axis in range(axes)]
+
+    @always_comb
+    def hand_on():
+        take.next = cmd.start and cmd.line
+        arc.start.next = cmd.start and not cmd.line
+        line.load.next = waiting and not line.busy and not arc.busy
+        line.advance.next = cmd.advance
+        arc.advance.next = cmd.advance and not line.busy
+
+    @always_seq(clock.posedge, reset=reset)
+    def queue():
+        if take:
+            waiting.next = 1
+            waiting_blend.next = cmd.blend
+        elif line.load:
+            waiting.next = 0
+        if line.load:
+            blend.next = waiting_blend
+        # the line's last iteration, with its last steps (the unit registers them at this edge)
+        last.next = line.advance and line.left == 1
+        loaded.next = line.load
+        # an arc's error stays until the arc DDA's next start: a line started since has seen it
+        if cmd.start:
+            stale.next = cmd.line
+
+    @always_comb
+    def status():
+        live_error.next = arc.error and not stale
+        cmd.ready.next = arc.ready and not waiting and not live_error
+        cmd.busy.next = arc.busy or line.busy or waiting
+        cmd.done.next = arc.done or last or (loaded and line.left == 0)
+        cmd.error.next = live_error and not line.busy
+        cmd.quadrant.next = arc.quadrant
+        cmd.stop_left.next = arc.stop_left
+        if line.busy or last:   # the line runs, or its last steps leave (0 left)
+            cmd.stop_left.next = all_ones
+            if not blend:
+                cmd.stop_left.next = concat(intbv(0)[pad:], line.left)
+
+    return magnitudes, hand_on, queue, status
+
+
+@block
+def _line_magnitude(clock, take, delta, magnitude, positive):
+    """At ``take`` a LINE's ``delta`` of one axis as the line unit takes it: |delta| and its sign."""
+
+    @always_seq(clock.posedge, reset=None)
+    def split():
+        if take:
+            positive.next = delta >= 0
+            if delta < 0:
+                magnitude.next = -delta
+            else:
+                magnitude.next = delta
+
+    return split
+
+
+def dda_axes_ports(axes, coord_width=None, variants=None):
+    """Fresh ports of ``dda_axes`` for conversion or a bench: ``axes`` axes."""
+    options = {name: value for name, value in (("coord_width", coord_width), ("variants", variants))
+               if value is not None}
+    cmd = DdaPort(**options)
+    return dict(clock=Signal(bool(0)), reset=card_reset(), cmd=cmd, axes_cmd=AxesCommand(axes, cmd.coord_width),
+                steps=AxisPulses(axes))

@@ -1,0 +1,139 @@
+"""A command's header word read as the sequencer needs it: framing, checks and the plane."""
+from myhdl import Signal, always_comb, block, intbv
+
+from models import instructions as isa
+from models.axes import XY_MASK, axes_of
+
+
+def _opcode_rom(value_of):
+    """A 16-entry tuple, indexed by opcode, converted to a case statement."""
+    return tuple(value_of(isa.BY_CODE[code]) if code in isa.BY_CODE else 0 for code in range(16))
+
+
+def _axis_field(op_name, field_name):
+    for name, lsb, width, _ in isa.BY_NAME[op_name].axis_fields:
+        if name == field_name:
+            return lsb, lsb + width
+    raise ValueError(f"{op_name} has no axis field {field_name}")
+
+
+def _zero_mask_operands(op):
+    spec = op.axis_operands
+    return len(axes_of(spec.zero_mask)) if spec else 0
+
+
+def _fewest_operands(op):
+    """The fewest operands a header of ``op`` frames: its axis mask 0, or one axis in it."""
+    spec = op.axis_operands
+    return len(op.fixed_operands) + (min(_zero_mask_operands(op), len(spec.lead) + 1) if spec else 0)
+
+
+@block
+def command_header(word, header):
+    """Reads the header word ``word`` (32 bits, the FIFO's output) into
+    ``header`` (``CommandHeader``), combinationally: the sequencer keeps
+    what it needs in the clock the word arrives.
+
+    Framing by the N-axis form (``models/instructions.py``,
+    ``operand_names``): the fixed operands, then for an axis mask (LINE.AXES,
+    PULSE.AXES, ARC.HELIX at the same bits) of 0 the operands it stands for
+    (LINE, PULSE: two), otherwise the lead operands (ARC: ITERATIONS) and one
+    per axis in the mask.  So a stream the host's encoder writes is framed
+    whatever the card does with it.
+
+    RANGE (``out_of_range``, docs/axes.md): a LINE axis the card
+    (``header.axes``) lacks; an ARC plane axis it lacks, or U_AXIS = V_AXIS
+    other than 0/0; a HELIX (not built yet: every HELIX axis is refused) and
+    a PULSE with AXES other than 0 or X and Y (not built yet).  The plane
+    ``u``, ``v``: U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: a
+    LINE's axes (0: X and Y), all ones otherwise: the sequencer puts each
+    operand into the lowest slot left.
+
+        word      ==X=ARC hdr=X=XS=X=YS=X ...
+        operands  ==X====4====X==?=X ...       valid while word is a header
+    """
+    axes, slot_count = header.axes, header.slot_count
+    mask_lsb, mask_msb = _axis_field("LINE", "AXES")
+    for name in ("PULSE", "ARC"):
+        if isa.BY_NAME[name].axis_operands.field != ("AXES" if name == "PULSE" else "HELIX"):
+            raise ValueError(f"{name}'s axis operands follow an unexpected field")
+    if _axis_field("PULSE", "AXES") != (mask_lsb, mask_msb) or _axis_field("ARC", "HELIX") != (mask_lsb, mask_msb):
+        raise ValueError("LINE.AXES, PULSE.AXES and ARC.HELIX must share their bits")
+    u_lsb, u_msb = _axis_field("ARC", "U_AXIS")
+    v_lsb, v_msb = _axis_field("ARC", "V_AXIS")
+    mask_width = mask_msb - mask_lsb
+    known = _opcode_rom(lambda op: 1)
+    moves = _opcode_rom(lambda op: int(op.name in ("LINE", "ARC")))
+    fixed = _opcode_rom(lambda op: len(op.fixed_operands))
+    has_mask = _opcode_rom(lambda op: int(op.axis_operands is not None))
+    zero_mask = _opcode_rom(_zero_mask_operands)
+    lead = _opcode_rom(lambda op: len(op.axis_operands.lead) if op.axis_operands else 0)
+    some = _opcode_rom(lambda op: int(_fewest_operands(op) > 0))
+    mask_high = _opcode_rom(lambda op: op.axis_header_mask >> 16)
+    mask_low = _opcode_rom(lambda op: op.axis_header_mask & 0xFFFF)
+    code = {op.name: op.code for op in isa.OPCODES}
+    line_op, arc_op, pulse_op = code["LINE"], code["ARC"], code["PULSE"]
+    index_bits = len(header.u)
+    all_slots = (1 << slot_count) - 1
+    ones_in = tuple(bin(mask).count("1") for mask in range(1 << mask_width))
+    beyond = ((1 << mask_width) - 1) & ~((1 << axes) - 1)   # the mask bits of axes the card lacks
+
+    fixed_count, zero_count, lead_count, ones = (Signal(intbv(0)[4:]) for _ in range(4))
+    has_axes = Signal(bool(0))
+    allowed_high, allowed_low = Signal(intbv(0)[16:]), Signal(intbv(0)[16:])
+    lookups = [_lookup(word(32, isa.OPCODE_LSB), rom, signal)
+               for rom, signal in ((fixed, fixed_count), (zero_mask, zero_count), (lead, lead_count),
+                                   (has_mask, has_axes), (known, header.known), (moves, header.moves), (some, header.has_operands),
+                                   (mask_high, allowed_high), (mask_low, allowed_low))]
+    lookups.append(_lookup(word(mask_msb, mask_lsb), ones_in, ones))
+
+    @always_comb
+    def frame():
+        header.operands.next = fixed_count
+        if has_axes:
+            if word[mask_msb:mask_lsb] == 0:
+                header.operands.next = fixed_count + zero_count
+            else:
+                header.operands.next = fixed_count + lead_count + ones
+        header.reserved.next = (word[32:16] & ~allowed_high) != 0 or (word[16:] & ~allowed_low) != 0
+
+    @always_comb
+    def check_axes():
+        header.out_of_range.next = False
+        if word[32:isa.OPCODE_LSB] == line_op:
+            header.out_of_range.next = (word[mask_msb:mask_lsb] & beyond) != 0
+        elif word[32:isa.OPCODE_LSB] == pulse_op:
+            header.out_of_range.next = word[mask_msb:mask_lsb] != 0 and word[mask_msb:mask_lsb] != XY_MASK
+        elif word[32:isa.OPCODE_LSB] == arc_op:
+            header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
+                                        or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
+                                        or word[mask_msb:mask_lsb] != 0)
+
+    @always_comb
+    def plane():
+        header.u.next = word[u_lsb + index_bits:u_lsb]
+        header.v.next = word[v_lsb + index_bits:v_lsb]
+        if word[u_msb:u_lsb] == 0 and word[v_msb:v_lsb] == 0:
+            header.v.next = 1
+
+    @always_comb
+    def slots():
+        header.slots.next = all_slots
+        if word[32:isa.OPCODE_LSB] == line_op:
+            if word[mask_msb:mask_lsb] == 0:
+                header.slots.next = XY_MASK
+            else:
+                header.slots.next = word[mask_lsb + slot_count:mask_lsb]
+
+    return lookups, frame, check_axes, plane, slots
+
+
+@block
+def _lookup(index, rom, value):
+    """``value`` is ``rom[index]`` (a case statement)."""
+
+    @always_comb
+    def look_up():
+        value.next = rom[index]
+
+    return look_up

@@ -1,0 +1,140 @@
+"""The card of N axes (``rtl/card_core.py`` of ``--axes N``) reading the N-axis
+command forms (docs/axes.md) over its back-end bus.
+
+Golden values: the paths of ``models.dda_axes.iterate_axes`` (chained, per
+axis), the framing of ``models.instructions.split_words`` (a refused
+command's operands are skipped, the next command runs), the RANGE rules of
+docs/axes.md.  The pins of every axis are captured, so an axis stepping
+when it should not shows.
+"""
+import pytest
+from myhdl import block, instance
+
+from models import instructions as isa
+from models import registers as regmap
+from models.axes import PLANES
+from models.commands import command_words
+from models.dda_plan import ArcCommand, AxesLineCommand
+from models.parameters import Build
+from rtl.card_core import card_core, card_core_ports
+from sim.backends.clocking import clock_source
+from sim.backends.icarus import convert_and_cosimulate
+from sim.backends.waves import run_traced
+from sim.card.card_bench import FIFO_DEPTH, HALF_PERIOD, axes_path, scenario_runner, wait_error, wait_idle
+from sim.card.local_bus_driver import LocalBusDriver
+
+G18, G19 = PLANES[18], PLANES[19]
+
+
+@block
+def axis_capture(clock, pins, axes, points):
+    """Append the position after every clock in which a STEP pin rises (DIR high: positive)."""
+
+    @instance
+    def capture():
+        before = [False] * axes
+        while True:
+            yield clock.negedge
+            now = [bool(pins.step(a)) for a in range(axes)]
+            rises = [n and not b for n, b in zip(now, before)]
+            if any(rises):
+                here = list(points[-1])
+                for axis, rise in enumerate(rises):
+                    if rise:
+                        here[axis] += 1 if pins.dir(axis) else -1
+                points.append(tuple(here))
+            before = now
+
+    return capture
+
+
+@block
+def _bench(ports, build, scenario, points, cosim):
+    clock = ports["clock"]
+    core = (convert_and_cosimulate(card_core, "card_core", ports, build=build) if cosim
+            else card_core(**ports, build=build))
+    return (core, clock_source(clock, 2 * HALF_PERIOD), axis_capture(clock, ports["pins"], build.axes, points),
+            scenario_runner(clock, ports["reset"], LocalBusDriver(clock, ports["local"]), scenario))
+
+
+def run_axes(name, axes, scenario, cosim=False):
+    """Run ``scenario(driver)`` on the core of ``axes`` axes; the points its pins visited."""
+    build = Build(fifo_depth=FIFO_DEPTH, axes=axes)
+    points = [(0,) * axes]
+    run_traced(_bench(card_core_ports(axes), build, scenario, points, cosim), name)
+    return points
+
+
+def start(driver):
+    yield from driver.io_write(regmap.offset("FEED_RATE"), regmap.RATE_MAX)
+    yield from driver.io_write(regmap.offset("CONTROL"), 1)
+
+
+def motion(words, results):
+    def scenario(driver):
+        yield from start(driver)
+        yield from driver.push_all(words)
+        results["status"] = yield from wait_idle(driver)
+
+    return scenario
+
+
+def line(*deltas, blend=False):
+    return AxesLineCommand(tuple(deltas), blend=blend)
+
+
+def test_two_axis_card_takes_one_axis_lines_and_the_reversed_plane():
+    # LINE.AXES of X alone, Y alone, X and Y; an arc in the plane (Y, X): CCW from +Y towards +X
+    moves = [line(5, 0), line(0, -3), line(4, 2, blend=True), ArcCommand(10, 0, 0, 10, plane=(1, 0)),
+             ArcCommand(0, 10, 10, 0, ccw=False)]
+    words = (isa.encode("LINE", 5, AXES=0b01) + isa.encode("LINE", -3, AXES=0b10)
+             + isa.encode("LINE", 4, 2, AXES=0b11, BLEND=1) + command_words(moves[3]) + command_words(moves[4]))
+    results = {}
+    points = run_axes("card_axes_two", 2, motion(words, results))
+    assert points == axes_path(moves, 2)
+    assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
+
+
+# a command the card of three axes refuses (RANGE), as words; each is framed by the N-axis form
+REFUSED = {
+    "line_axis_beyond": isa.encode("LINE", 1, 2, 3, 4, AXES=0b1111),
+    "line_too_wide": isa.encode("LINE", 1, 1 << 23, AXES=0b101),
+    "plane_axis_beyond": isa.encode("ARC", 10, 0, 0, 10, U_AXIS=3, V_AXIS=0),
+    "plane_one_axis": isa.encode("ARC", 10, 0, 0, 10, U_AXIS=2, V_AXIS=2),
+    "helix_not_built": isa.encode("ARC", 10, 0, 0, 10, 16, 5, HELIX=0b100),
+    "pulse_axes_not_built": isa.encode("PULSE", 3, 4, AXES=0b101),
+}
+
+
+@pytest.mark.parametrize("cases", [["line_axis_beyond", "plane_one_axis", "helix_not_built"],
+                                   ["line_too_wide", "plane_axis_beyond", "pulse_axes_not_built"]])
+def test_three_axis_card_refuses_what_it_cannot_run_and_frames_the_rest(cases):
+    good = line(2, 1, -3)
+    results = {}
+
+    def scenario(driver):
+        yield from start(driver)
+        for case in cases:
+            yield from driver.push_all(command_words(good) + REFUSED[case] + command_words(good))
+            results[case] = yield from wait_error(driver, 400)
+            yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_ERROR=1))
+            yield from wait_idle(driver)
+
+    points = run_axes("card_axes_refused", 3, scenario)
+    assert results == {case: isa.ERROR_CODE["RANGE"] for case in cases}
+    # each refused command stopped the stream after the good one before it; the one after it ran
+    assert points == axes_path([good] * 2 * len(cases), 3)
+
+
+MOVES_3D = [line(30, -12, 20, blend=True), ArcCommand(20, 0, 0, 20, plane=G18, blend=True),
+            line(-7, 25, -40), ArcCommand(0, -15, 15, 0, ccw=False, plane=G19), line(0, 0, 9),
+            ArcCommand(12, 0, 12, 0, plane=(2, 1))]
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+def test_three_axis_card_runs_3d_lines_and_arcs_in_every_plane(cosim):
+    results = {}
+    words = [word for move in MOVES_3D for word in command_words(move)]
+    points = run_axes(f"card_axes_3d_{'icarus' if cosim else 'myhdl'}", 3, motion(words, results), cosim)
+    assert points == axes_path(MOVES_3D, 3)
+    assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
