@@ -31,7 +31,7 @@ def settle(stat):
     quiet_since = None
     while True:
         stat.poll()
-        moving = stat.queue > 0 or any(abs(j["velocity"]) > 0 for j in stat.joint[:2]) or not stat.inpos
+        moving = stat.queue > 0 or any(abs(j["velocity"]) > 0 for j in stat.joint[:stat.joints]) or not stat.inpos
         if moving:
             quiet_since = None
         elif quiet_since is None:
@@ -51,7 +51,7 @@ def main(argv):
     command.mode(linuxcnc.MODE_MANUAL)
     command.teleop_enable(0)
     command.home(-1)
-    wait_for(stat, lambda s: all(s.homed[:2]), "homing")
+    wait_for(stat, lambda s: all(s.homed[:s.joints]), "homing")
     for job in jobs:
         program, _, seconds = job.partition("@")
         seconds, _, estop = seconds.partition(":")

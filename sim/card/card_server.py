@@ -5,7 +5,9 @@
 opens ``CardSession("verilator", clock_hz=N, axes=N)`` (a card built to report N in
 CLOCK_HZ, of N axes), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
-the STEP/DIR pin rises, the changes of the DRIVE_ENABLE pin and the card's
+the STEP/DIR pin rises (``rises``: clock, X and Y stepped, their DIR pins;
+``axis_rises``: clock, every axis's step position after it, from the raw
+DIR pins), the changes of the DRIVE_ENABLE pin and the card's
 final state (STATUS, MACHINE_STATUS, STOP_REASON, POS_X, POS_Y read after
 the end).
 
@@ -239,8 +241,10 @@ class CardServer:
     def record(self):
         """What the test compares: clocks are card clocks since the server opened the card."""
         rises = [(int(r[0]) - self.start, *map(int, r[1:])) for r in self.session.log.rises]
+        axes = self.session.target.axes
+        axis_rises = [(int(clock) - self.start, point) for clock, point in self.session.log.axis_rises(axes)]
         record = dict(clock_hz=self.clock_hz, advances=self.advances, requests=self.requests, lost=self.lost,
-                      rises=rises, fifo=self.fifo, writes=self.writes, drive=self.drive, free_run=self.free_run,
+                      rises=rises, axis_rises=axis_rises, fifo=self.fifo, writes=self.writes, drive=self.drive, free_run=self.free_run,
                       final=self.final)
         if self.session.machine is not None:
             state = self.session.machine.state()

@@ -40,6 +40,37 @@ def deviations(samples, pins, scale, delay_clocks):
     return result
 
 
+def read_axis_samples(path, axes):
+    """[((commanded joint positions), card clock at the period's end, fifo level, underruns,
+    drive-enable)] from ``halsampler -t`` of ``session.MILL_RECORD_HAL`` (``axes`` joints)."""
+    samples = []
+    for line in open(path):
+        fields = line.split()[1:]
+        commands = tuple(float(f) for f in fields[:axes])
+        clock, level, underruns, drive = (int(f) for f in fields[axes:axes + 4])
+        samples.append((commands, clock, level, underruns, drive))
+    return samples
+
+
+def axis_pin_positions(card_log):
+    """(clocks of the rises, every axis's step position after each) from the card server's
+    log (its ``axis_rises``)."""
+    rises = json.load(open(card_log))["axis_rises"]
+    return [clock for clock, _ in rises], [tuple(point) for _, point in rises]
+
+
+def axis_deviations(samples, pins, scale, delay_clocks):
+    """Per sample of ``read_axis_samples``: the pins' position delay_clocks after the period's
+    end minus the command, in steps, per axis."""
+    clocks, points = pins
+    result = []
+    for commands, clock, *_ in samples:
+        i = bisect.bisect_right(clocks, clock + delay_clocks)
+        here = points[i - 1] if i else (0,) * len(commands)
+        result.append(tuple(p - c * scale for p, c in zip(here, commands)))
+    return result
+
+
 def queued_position(fifo):
     """Where the LINEs of the FIFO bursts (the server's ``fifo`` record) lead, in steps."""
     x = y = 0

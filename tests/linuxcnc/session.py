@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.linuxcnc.compare import pin_positions, read_samples
+from tests.linuxcnc.compare import axis_pin_positions, pin_positions, read_axis_samples, read_samples
 
 ROOT = Path(__file__).resolve().parents[2]
 USER = "dda-cnc"
@@ -84,22 +84,39 @@ loadusr ./record.sh {samples}
 """
 
 
-def configure(run):
-    config = ROOT / "linuxcnc" / "config"
-    for name in ("dda_xy.ini", "dda_xy.hal", "dda_xy.var"):
-        shutil.copy(config / name, run / name)
-    hal = (run / "dda_xy.hal").read_text()
+MILL_RECORD_HAL = """loadrt sampler depth=16384 cfg=fffusub
+addf sampler.0 servo-thread
+net x-pos-cmd => sampler.0.pin.0
+net y-pos-cmd => sampler.0.pin.1
+net z-pos-cmd => sampler.0.pin.2
+net card-clock dda-card.0.clock => sampler.0.pin.3
+net fifo-level dda-card.0.fifo-level => sampler.0.pin.4
+net underruns dda-card.0.underruns => sampler.0.pin.5
+net drive-enable => sampler.0.pin.6
+loadusr ./record.sh {samples}
+"""
+MILL_AXES = 3  # dda_xyz: X, Y, Z
+CONFIGS = {"dda_xy": RECORD_HAL, "dda_xyz": MILL_RECORD_HAL}  # sample configuration: what the sampler records
+
+
+def configure(run, config="dda_xy"):
+    """The sample configuration ``config`` (linuxcnc/config/CONFIG.ini, .hal, .var) in ``run``,
+    on the card server's socket, headless, with the sampler of ``CONFIGS``."""
+    folder = ROOT / "linuxcnc" / "config"
+    for suffix in (".ini", ".hal", ".var"):
+        shutil.copy(folder / f"{config}{suffix}", run / f"{config}{suffix}")
+    hal = (run / f"{config}.hal").read_text()
     assert "\nloadrt dda_card\n" in hal
     driver = f"\nloadrt dda_card sim={run}/card.sock keep_ahead={KEEP_AHEAD}\n"
-    (run / "dda_xy.hal").write_text(hal.replace("\nloadrt dda_card\n", driver))
-    ini = (run / "dda_xy.ini").read_text()
+    (run / f"{config}.hal").write_text(hal.replace("\nloadrt dda_card\n", driver))
+    ini = (run / f"{config}.ini").read_text()
     # Everything LinuxCNC's user runs or reads is copied here: the checkout may sit in a folder
     # that user cannot enter (a 0700 temporary folder, a 0750 home folder).
     shutil.copy(ROOT / "linuxcnc" / "headless.py", run / "headless.py")
     ini = ini.replace("DISPLAY = axis", f"DISPLAY = {run}/headless.py")
-    ini = ini.replace("HALFILE = dda_xy.hal", "HALFILE = dda_xy.hal\nHALFILE = record.hal")
-    (run / "dda_xy.ini").write_text(ini)
-    (run / "record.hal").write_text(RECORD_HAL.format(samples=run / "samples.txt"))
+    ini = ini.replace(f"HALFILE = {config}.hal", f"HALFILE = {config}.hal\nHALFILE = record.hal")
+    (run / f"{config}.ini").write_text(ini)
+    (run / "record.hal").write_text(CONFIGS[config].format(samples=run / "samples.txt"))
     (run / "record.sh").write_text('#!/bin/sh\nexec halsampler -t > "$1"\n')
     (run / "record.sh").chmod(0o755)
     for program in (Path(__file__).parent / "gcode").glob("lcnc_*.ngc"):
@@ -118,17 +135,20 @@ def card_server(run, *options, name="card"):
     return server
 
 
-def run_linuxcnc(run, jobs, *server_options):
-    """LinuxCNC on the card server for ``jobs`` (headless.py's arguments); (samples, pins, record)."""
+def run_linuxcnc(run, jobs, *server_options, config="dda_xy"):
+    """LinuxCNC (``config``, as ``configure`` left it) on the card server for ``jobs``
+    (headless.py's arguments); (samples, pins, record)."""
     server = card_server(run, *server_options)
     try:
-        lcnc = as_user(["linuxcnc", "-r", str(run / "dda_xy.ini"), *jobs], run, 300)
+        lcnc = as_user(["linuxcnc", "-r", str(run / f"{config}.ini"), *jobs], run, 300)
         assert lcnc.returncode == 0, lcnc.stdout[-3000:] + lcnc.stderr[-3000:]
         server.wait(timeout=60)
     finally:
         server.kill()
     record = json.loads((run / "card.json").read_text())
-    return read_samples(run / "samples.txt"), pin_positions(run / "card.json"), record
+    if config == "dda_xy":
+        return read_samples(run / "samples.txt"), pin_positions(run / "card.json"), record
+    return read_axis_samples(run / "samples.txt", MILL_AXES), axis_pin_positions(run / "card.json"), record
 
 
 def run_and_kill(run, program, seconds, free_run):
