@@ -485,7 +485,7 @@ wire reg_word25_mine;
 wire [31:0] reg_word25_shown_wide;
 reg [31:0] reg_word25_chain_out_data;
 wire reg_word25_chain_out_clamped;
-reg [7:0] reg_word26_shown;
+reg [15:0] reg_word26_shown;
 wire reg_word26_mine;
 wire [31:0] reg_word26_shown_wide;
 reg [31:0] reg_word26_chain_out_data;
@@ -613,7 +613,17 @@ wire reg_word38_mine_write;
 wire reg_word38_set_mine;
 wire [31:0] reg_word38_shown_wide;
 reg [31:0] reg_word38_written;
+reg [31:0] reg_word38_chain_out_data;
 wire reg_word38_chain_out_clamped;
+reg [6:0] reg_word39_shown;
+wire reg_word39_mine;
+wire [31:0] reg_word39_shown_wide;
+reg [31:0] reg_word39_chain_out_data;
+wire reg_word39_chain_out_clamped;
+reg [6:0] reg_word40_shown;
+wire reg_word40_mine;
+wire [31:0] reg_word40_shown_wide;
+wire reg_word40_chain_out_clamped;
 wire sequencer0_arriving_coord_fits;
 reg [2:0] sequencer0_arriving_count;
 wire sequencer0_arriving_count_fits;
@@ -776,6 +786,10 @@ wire machine_guard0_grant_x_granted_step;
 wire machine_guard0_grant_x_granted_dir;
 wire machine_guard0_grant_y_granted_step;
 wire machine_guard0_grant_y_granted_dir;
+wire machine_guard0_limit_x_hit_pos;
+wire machine_guard0_limit_x_hit_neg;
+wire machine_guard0_limit_y_hit_pos;
+wire machine_guard0_limit_y_hit_neg;
 reg [23:0] homing0_addend;
 reg homing0_axis;
 reg homing0_done;
@@ -807,7 +821,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037442;
+assign reg_word0_shown = 32'd3719037443;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -863,6 +877,10 @@ assign input_filter0_inputs_pins[3] = pins_limit_pos_y;
 assign input_filter0_inputs_pins[2] = pins_limit_neg_x;
 assign input_filter0_inputs_pins[1] = pins_limit_pos_x;
 assign input_filter0_inputs_pins[0] = pins_estop;
+assign machine_guard0_hits[3] = machine_guard0_limit_y_hit_neg;
+assign machine_guard0_hits[2] = machine_guard0_limit_y_hit_pos;
+assign machine_guard0_hits[1] = machine_guard0_limit_x_hit_neg;
+assign machine_guard0_hits[0] = machine_guard0_limit_x_hit_pos;
 
 
 
@@ -2199,7 +2217,7 @@ end
 
 
 
-assign reg_word26_shown_wide = {24'h0, reg_word26_shown};
+assign reg_word26_shown_wide = {16'h0, reg_word26_shown};
 
 
 
@@ -2860,10 +2878,10 @@ assign reg_word38_mine = (local_addr == 152);
 
 always @(reg_word38_mine, reg_word38_shown_wide, reg_word37_chain_out_data) begin: reg_word38_read_chain
     if (reg_word38_mine) begin
-        read_end = (reg_word37_chain_out_data | reg_word38_shown_wide);
+        reg_word38_chain_out_data = (reg_word37_chain_out_data | reg_word38_shown_wide);
     end
     else begin
-        read_end = reg_word37_chain_out_data;
+        reg_word38_chain_out_data = reg_word37_chain_out_data;
     end
 end
 
@@ -2915,6 +2933,50 @@ always @(posedge clock, negedge reset) begin: reg_word38__store27_hold_rw
         end
     end
 end
+
+
+
+assign reg_word39_mine = (local_addr == 156);
+
+
+always @(reg_word39_mine, reg_word39_shown_wide, reg_word38_chain_out_data) begin: reg_word39_read_chain
+    if (reg_word39_mine) begin
+        reg_word39_chain_out_data = (reg_word38_chain_out_data | reg_word39_shown_wide);
+    end
+    else begin
+        reg_word39_chain_out_data = reg_word38_chain_out_data;
+    end
+end
+
+
+
+assign reg_word39_shown_wide = {25'h0, reg_word39_shown};
+
+
+
+assign reg_word39_chain_out_clamped = reg_word38_chain_out_clamped;
+
+
+
+assign reg_word40_mine = (local_addr == 160);
+
+
+always @(reg_word40_mine, reg_word40_shown_wide, reg_word39_chain_out_data) begin: reg_word40_read_chain
+    if (reg_word40_mine) begin
+        read_end = (reg_word39_chain_out_data | reg_word40_shown_wide);
+    end
+    else begin
+        read_end = reg_word39_chain_out_data;
+    end
+end
+
+
+
+assign reg_word40_shown_wide = {25'h0, reg_word40_shown};
+
+
+
+assign reg_word40_chain_out_clamped = reg_word39_chain_out_clamped;
 
 
 
@@ -4321,9 +4383,18 @@ assign machine_guard0_grant_y_granted_dir = requests_dir_y;
 
 
 
+assign machine_guard0_limit_x_hit_pos = (requests_step_x && requests_dir_x && conditioning_active[1]);
+assign machine_guard0_limit_x_hit_neg = (requests_step_x && (!requests_dir_x) && conditioning_active[2]);
+
+
+
+assign machine_guard0_limit_y_hit_pos = (requests_step_y && requests_dir_y && conditioning_active[3]);
+assign machine_guard0_limit_y_hit_neg = (requests_step_y && (!requests_dir_y) && conditioning_active[4]);
+
+
+
 assign machine_guard0_estop = conditioning_active[0];
 assign machine_guard0_expired = ((watchdog_left == 1) && (!reg_word30__store20_word_strobe));
-assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && conditioning_active[4]), (requests_step_y && requests_dir_y && conditioning_active[3]), (requests_step_x && (!requests_dir_x) && conditioning_active[2]), (requests_step_x && requests_dir_x && conditioning_active[1])};
 
 
 
@@ -4810,14 +4881,14 @@ always @(status_words0_done_flag, error_code, guard_stopped, any_busy, level_wid
 end
 
 
-always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word38_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
+always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word40_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (status_words0_busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_shown) && (!status_words0_low_before));
     word[2] = ((error_code != 0) && (!status_words0_error_before));
     word[3] = sequencer0_mark_strobe;
-    word[4] = reg_word38_chain_out_clamped;
+    word[4] = reg_word40_chain_out_clamped;
     word[5] = guard_stop_event;
     word[6] = input_filter0_inputs_changed;
     word[7] = homing0_port_ended;
@@ -4831,19 +4902,21 @@ assign irq = ((reg_word5_shown & reg_word4_shown) != 0);
 
 always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: status_words0_assemble_machine
     reg [20-1:0] word;
-    reg [8-1:0] why;
+    reg [16-1:0] why;
     word = 20'h0;
-    word[0+:7] = input_filter0_inputs_raw;
-    word[8+:7] = conditioning_active;
+    word[0+:7] = input_filter0_inputs_raw[7-1:0];
+    word[8+:7] = conditioning_active[7-1:0];
     word[16] = guard_stopped;
     word[17] = pins_drive_enable;
     word[18] = settled;
     word[19] = guard_stopping;
     reg_word25_shown = word;
-    why = 8'h0;
+    why = 16'h0;
     why[0+:2] = machine_guard0_guard_reason;
     why[4+:4] = machine_guard0_guard_limits;
     reg_word26_shown = why;
+    reg_word39_shown = input_filter0_inputs_raw;
+    reg_word40_shown = conditioning_active;
 end
 
 

@@ -86,7 +86,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         raise ValueError(f"regs_fifo: pins of {pins.axes} axes, the build says {build.axes}")
     fifo_depth, axes = build.fifo_depth, build.axes
     # BAR0's registers, then those only the per-axis blocks of Z, A, ... have (models/registers.py)
-    specs = regmap.REGISTERS + regmap.axis_registers(axes)
+    # (the input registers with the bits of this build's inputs: ``built_register``)
+    specs = tuple(regmap.built_register(r, axes) for r in regmap.REGISTERS) + regmap.axis_registers(axes)
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
     read_waited, read_word = Signal(bool(0)), Signal(intbv(0)[32:])
@@ -172,9 +173,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         units.append(direct_pulse(clock, reset, command=direct[axis], out=direct_out[axis]))
     units.append(axis_block(clock, reset, axis_regs, axes=axes))
     units.append(pulse_out(clock, reset, request=granted, control=outputs, pins=pins, position=position))
-    conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
+    conditioning = InputConditioning(axes, pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
-    guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
+    guard = MachineGuard(axes, active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
                          clear_stop=clear_stop, held=settled, pulsing=outputs.pulsing,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
                          drive_enable=pins.drive_enable, watchdog_left=watchdog_left)
@@ -346,13 +347,13 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
                                   values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))
         if axis >= 2:   # the DDA's steps reach X and Y (dda.py), the direct pulses every axis
             units.append(_direct_only(direct_out[axis], requests.step(axis), requests.dir(axis)))
-    status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
+    status = StatusWords(axes, busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
                          int_enable=values["INT_ENABLE"], position_x=position.x, position_y=pos_y_snapshot,
                          status=hw["STATUS"], int_set=hw["INT_STATUS"], mark_tag=hw["MARK_TAG"],
                          machine_status=hw["MACHINE_STATUS"], stop_reason=hw["STOP_REASON"], pos_x=hw["POS_X"],
-                         pos_y=hw["POS_Y"], irq=irq)
+                         pos_y=hw["POS_Y"], input_raw=hw["INPUT_RAW"], input_active=hw["INPUT_ACTIVE"], irq=irq)
     units.append(status_words(clock, reset, words=status, guard=guard, conditioning=conditioning, mark=mark))
     return units
 

@@ -2,23 +2,25 @@
 from myhdl import Signal, intbv
 
 from models import registers as regmap
+from models.parameters import AXES
 from rtl.interfaces.bundle import adopt
-from rtl.interfaces.card import MACHINE_INPUTS
+from rtl.interfaces.card import machine_inputs
 
 
 class InputConditioning:
-    """The machine inputs' conditioning (``rtl/machine/input_filter.py``).
+    """The machine inputs' conditioning (``rtl/machine/input_filter.py``) of a card of ``axes`` axes.
 
     The card drives ``pins`` (the input pins as one vector, bit n the input
-    n of ``MACHINE_INPUTS``), ``polarity`` (INPUT_POLARITY: 1 inverts that
+    n of ``MACHINE_INPUTS``, as many as ``machine_inputs(axes)``), ``polarity`` (INPUT_POLARITY: 1 inverts that
     input, for switches active low), ``samples`` (INPUT_FILTER) and
     ``tick`` (INPUT_TICK, clocks per sample, >= 1); the filter drives
     ``raw`` (the pins after the two-flip-flop synchroniser, as wired),
     ``active`` (filtered, polarity applied: 1 active) and ``changed`` (one
     clock after an ``active`` bit changed)."""
 
-    def __init__(self, **given):
-        count = len(MACHINE_INPUTS)
+    def __init__(self, axes=AXES.default, **given):
+        self.axes = axes
+        count = len(machine_inputs(axes))
         samples, tick = regmap.register("INPUT_FILTER"), regmap.register("INPUT_TICK")
         adopt(self, given, pins=Signal(intbv(0)[count:]), polarity=Signal(intbv(0)[count:]),
                samples=Signal(intbv(samples.reset)[samples.width:]), tick=Signal(intbv(tick.reset)[tick.width:]),
@@ -26,7 +28,8 @@ class InputConditioning:
 
 
 class MachineGuard:
-    """The machine guard's seam with the registers (``rtl/machine/machine_guard.py``).
+    """The machine guard's seam with the registers (``rtl/machine/machine_guard.py``) of a card of
+    ``axes`` axes.
 
     The card drives ``active`` (the filtered inputs, ``InputConditioning``),
     ``drive_request`` (MACHINE_CONTROL.DRIVE_ENABLE), ``clear_stop``
@@ -39,19 +42,20 @@ class MachineGuard:
     pulse: stopped, or the E-stop input active), ``stopping`` (a
     decelerated stop is under way: the feed rate pauses), ``stopped`` (the
     latch), ``stop_event`` (one clock, as the latch sets), ``reason`` and
-    ``limits`` (STOP_REASON), ``drive_enable`` (the pin, from a flip-flop)
+    ``limits`` (STOP_REASON; ``limits`` has the card's axes' bits, two an axis), ``drive_enable`` (the pin, from a flip-flop)
     and ``watchdog_left`` (clocks before the watchdog expires)."""
 
-    def __init__(self, **given):
+    def __init__(self, axes=AXES.default, **given):
+        self.axes = axes
         reason, watchdog = regmap.register("STOP_REASON"), regmap.register("WATCHDOG")
-        adopt(self, given, active=Signal(intbv(0)[len(MACHINE_INPUTS):]), drive_request=Signal(bool(0)),
+        adopt(self, given, active=Signal(intbv(0)[len(machine_inputs(axes)):]), drive_request=Signal(bool(0)),
                clear_stop=Signal(bool(0)), watchdog_load=Signal(bool(0)),
                watchdog_timeout=Signal(intbv(0)[watchdog.width:]), ramp=Signal(bool(0)), held=Signal(bool(0)),
                pulsing=Signal(bool(0)),
                halt=Signal(bool(0)), stopping=Signal(bool(0)),
                stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
                reason=Signal(intbv(0)[reason.field("REASON").width:]),
-               limits=Signal(intbv(0)[reason.field("LIMITS").width:]), drive_enable=Signal(bool(0)),
+               limits=Signal(intbv(0)[2 * axes:]), drive_enable=Signal(bool(0)),
                watchdog_left=Signal(intbv(0)[watchdog.width:]))
 
 
