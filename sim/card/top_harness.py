@@ -44,7 +44,8 @@ from pathlib import Path
 from myhdl import Signal, always, block, intbv, now
 
 from rtl.convert import GEN_DIR, build_dir
-from rtl.interfaces import MACHINE_INPUTS
+from models.parameters import AXES
+from rtl.interfaces import machine_inputs
 from sim.backends.conversions import converted
 from sim.backends.icarus import CosimError, cosimulate
 from sim.pci.bus import LINE_WIDTHS, OPEN_DRAIN, PULLED_UP
@@ -55,7 +56,7 @@ GEN_ENVIRONMENT = "DDA_CARD_GEN"
 ICE40_DEFINES = ("NO_ICE40_DEFAULT_ASSIGNMENTS",)  # Icarus has no default values on input ports
 PIN_PREFIX = "pci_pins_"
 MOTOR_OUTPUTS = ("motor_step_x", "motor_dir_x", "motor_step_y", "motor_dir_y", "motor_drive_enable")
-MOTOR_INPUTS = tuple(f"motor_{name}" for name in MACHINE_INPUTS)
+MOTOR_INPUTS = tuple(f"motor_{name}" for name in machine_inputs(AXES.default))   # the two-axis top's
 DIRECT_PORTS = ("clock", "reset", *MOTOR_OUTPUTS, *MOTOR_INPUTS)
 
 _PORT = re.compile(r"^\s*(input|output|inout)\s+(?:wire\s+|reg\s+)?(?:\[(\d+):0\]\s*)?(\w+)\s*;",
