@@ -269,6 +269,7 @@ reg [3:0] card_core0_regs_fifo1_set_index;
 reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
+reg [1:0] card_core0_regs_fifo1_home_zero;
 reg [1:0] card_core0_regs_fifo1_step_mode;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
@@ -291,8 +292,6 @@ wire [9:0] card_core0_regs_fifo1_fifo_level;
 wire card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
 reg card_core0_regs_fifo1_home_idle;
-reg [1:0] card_core0_regs_fifo1_home_inputs;
-reg [1:0] card_core0_regs_fifo1_home_zero;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
@@ -628,18 +627,18 @@ reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word71__store48_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word71__store48_word_value;
-wire [1:0] card_core0_regs_fifo1_reg_word72_honoured;
+wire [6:0] card_core0_regs_fifo1_reg_word72_honoured;
 wire card_core0_regs_fifo1_reg_word72_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word72_shown;
+reg [6:0] card_core0_regs_fifo1_reg_word72_shown;
 reg card_core0_regs_fifo1_reg_word72_clamped;
 wire card_core0_regs_fifo1_reg_word72_mine;
 wire card_core0_regs_fifo1_reg_word72_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word72_written;
+wire [6:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word72__store49_word_strobe;
-reg [1:0] card_core0_regs_fifo1_reg_word72__store49_word_value;
+reg [6:0] card_core0_regs_fifo1_reg_word72__store49_word_value;
 reg [5:0] card_core0_regs_fifo1_reg_word73_shown;
 wire card_core0_regs_fifo1_reg_word73_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
@@ -900,7 +899,8 @@ wire card_core0_regs_fifo1_machine_guard1_limit_x_hit_neg;
 wire card_core0_regs_fifo1_machine_guard1_limit_y_hit_pos;
 wire card_core0_regs_fifo1_machine_guard1_limit_y_hit_neg;
 reg [23:0] card_core0_regs_fifo1_homing1_addend;
-reg card_core0_regs_fifo1_homing1_axis;
+reg [2:0] card_core0_regs_fifo1_homing1_asked;
+reg [2:0] card_core0_regs_fifo1_homing1_axis;
 reg card_core0_regs_fifo1_homing1_done;
 reg card_core0_regs_fifo1_homing1_finished;
 reg card_core0_regs_fifo1_homing1_gave_up;
@@ -917,6 +917,8 @@ reg card_core0_regs_fifo1_homing1_seeking;
 wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
 reg [2:0] card_core0_regs_fifo1_homing1_state;
 reg card_core0_regs_fifo1_homing1_switch;
+reg card_core0_regs_fifo1_homing1_valid;
+wire [1:0] card_core0_regs_fifo1_homing1_port_home;
 reg card_core0_regs_fifo1_homing1_port_load;
 reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
@@ -1159,6 +1161,8 @@ assign card_core0_regs_fifo1_machine_guard1_hits[3] = card_core0_regs_fifo1_mach
 assign card_core0_regs_fifo1_machine_guard1_hits[2] = card_core0_regs_fifo1_machine_guard1_limit_y_hit_pos;
 assign card_core0_regs_fifo1_machine_guard1_hits[1] = card_core0_regs_fifo1_machine_guard1_limit_x_hit_neg;
 assign card_core0_regs_fifo1_machine_guard1_hits[0] = card_core0_regs_fifo1_machine_guard1_limit_x_hit_pos;
+assign card_core0_regs_fifo1_homing1_port_home[1] = card_core0_regs_fifo1_conditioning_active[6];
+assign card_core0_regs_fifo1_homing1_port_home[0] = card_core0_regs_fifo1_conditioning_active[5];
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_input_register
@@ -3985,7 +3989,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word72_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word72_shown};
+assign card_core0_regs_fifo1_reg_word72_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word72_shown};
 
 
 
@@ -3993,11 +3997,11 @@ assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word72_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
+assign card_core0_regs_fifo1_reg_word72_written = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[7-1:0];
 
 
 
@@ -5967,8 +5971,23 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
 end
 
 
-always @(card_core0_regs_fifo1_reg_word77_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
-    card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
+always @(card_core0_regs_fifo1_reg_word72__store49_word_value) begin: card_core0_regs_fifo1_homing1_ask
+    if ((card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4] != 0)) begin
+        card_core0_regs_fifo1_homing1_asked = card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4];
+        card_core0_regs_fifo1_homing1_valid = (card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4] < 2);
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_asked = card_core0_regs_fifo1_reg_word72__store49_word_value[0];
+        card_core0_regs_fifo1_homing1_valid = 1'b1;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word77_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_homing1_port_home, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+    card_core0_regs_fifo1_homing1_switch = 0;
+    if ((card_core0_regs_fifo1_homing1_axis < 2)) begin
+        card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_port_home[card_core0_regs_fifo1_homing1_axis];
+    end
     card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
     card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
     if (((card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b100))) begin
@@ -6028,6 +6047,7 @@ end
 always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
     reg drained;
     reg released;
+    reg [2-1:0] zero;
     drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
     released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
     card_core0_regs_fifo1_homing1_opened = released;
@@ -6035,15 +6055,11 @@ always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, car
     card_core0_regs_fifo1_homing1_finished = ((card_core0_regs_fifo1_homing1_state == 3'b110) && (!card_core0_regs_fifo1_out_active));
     card_core0_regs_fifo1_home_cut = ((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch);
     card_core0_regs_fifo1_homing1_port_retarget = released;
-    card_core0_regs_fifo1_home_zero = 0;
-    if (released) begin
-        if (card_core0_regs_fifo1_homing1_axis) begin
-            card_core0_regs_fifo1_home_zero = 2;
-        end
-        else begin
-            card_core0_regs_fifo1_home_zero = 1;
-        end
+    zero = 2'h0;
+    if ((released && (card_core0_regs_fifo1_homing1_axis < 2))) begin
+        zero[card_core0_regs_fifo1_homing1_axis] = 1;
     end
+    card_core0_regs_fifo1_home_zero = zero;
 end
 
 
@@ -6064,12 +6080,13 @@ end
 
 
 always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word72__store49_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
-    reg [2-1:0] asked;
+    reg [7-1:0] taken;
     reg [6-1:0] word;
-    asked = 2'h0;
-    asked[0] = card_core0_regs_fifo1_homing1_axis;
-    asked[1] = card_core0_regs_fifo1_homing1_negative;
-    card_core0_regs_fifo1_reg_word72_shown = asked;
+    taken = 7'h0;
+    taken[0] = card_core0_regs_fifo1_homing1_axis[0];
+    taken[1] = card_core0_regs_fifo1_homing1_negative;
+    taken[7-1:4] = card_core0_regs_fifo1_homing1_axis;
+    card_core0_regs_fifo1_reg_word72_shown = taken;
     word = 6'h0;
     word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word72__store49_word_strobe);
     word[1] = card_core0_regs_fifo1_homing1_done;
@@ -6101,12 +6118,12 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
             if (card_core0_regs_fifo1_reg_word72__store49_word_strobe) begin
-                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word72__store49_word_value[0];
+                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_homing1_asked;
                 card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word72__store49_word_value[1];
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
-                card_core0_regs_fifo1_homing1_refused <= (!card_core0_regs_fifo1_home_idle);
-                card_core0_regs_fifo1_homing1_port_ended <= (!card_core0_regs_fifo1_home_idle);
+                card_core0_regs_fifo1_homing1_refused <= ((!card_core0_regs_fifo1_home_idle) || (!card_core0_regs_fifo1_homing1_valid));
+                card_core0_regs_fifo1_homing1_port_ended <= ((!card_core0_regs_fifo1_home_idle) || (!card_core0_regs_fifo1_homing1_valid));
             end
         end
         else begin
@@ -6136,7 +6153,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             card_core0_regs_fifo1_homing1_state <= 3'b000;
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if ((card_core0_regs_fifo1_reg_word72__store49_word_strobe && card_core0_regs_fifo1_home_idle)) begin
+            if ((card_core0_regs_fifo1_reg_word72__store49_word_strobe && card_core0_regs_fifo1_home_idle && card_core0_regs_fifo1_homing1_valid)) begin
                 card_core0_regs_fifo1_homing1_state <= 3'b001;
             end
         end
@@ -6247,7 +6264,6 @@ always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card
     card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
     card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
     card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
-    card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
     card_core0_regs_fifo1_drive_cleared = 0;
     if (card_core0_regs_fifo1_guard_stopped) begin
         card_core0_regs_fifo1_drive_cleared = 1;
@@ -6302,11 +6318,11 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
-    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[0] == 0));
+    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[0] == 0));
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
@@ -6321,11 +6337,11 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
-    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[0] == 1));
+    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[0] == 1));
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_homing1_port_period;
     end

@@ -181,6 +181,7 @@ reg [3:0] set_index;
 reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
+reg [1:0] home_zero;
 reg [1:0] step_mode;
 reg signed [31:0] pos_y_snapshot;
 reg [23:0] watchdog_left;
@@ -203,8 +204,6 @@ wire [9:0] fifo_level;
 wire halt;
 wire hold;
 reg home_idle;
-reg [1:0] home_inputs;
-reg [1:0] home_zero;
 reg io_read;
 reg io_write;
 reg io_written;
@@ -534,18 +533,18 @@ reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
 reg reg_word30__store20_word_strobe;
 reg [23:0] reg_word30__store20_word_value;
-wire [1:0] reg_word31_honoured;
+wire [6:0] reg_word31_honoured;
 wire reg_word31_out_of_range;
-reg [1:0] reg_word31_shown;
+reg [6:0] reg_word31_shown;
 reg reg_word31_clamped;
 wire reg_word31_mine;
 wire reg_word31_mine_write;
 wire [31:0] reg_word31_shown_wide;
-wire [1:0] reg_word31_written;
+wire [6:0] reg_word31_written;
 reg [31:0] reg_word31_chain_out_data;
 wire reg_word31_chain_out_clamped;
 reg reg_word31__store21_word_strobe;
-reg [1:0] reg_word31__store21_word_value;
+reg [6:0] reg_word31__store21_word_value;
 reg [5:0] reg_word32_shown;
 wire reg_word32_mine;
 wire [31:0] reg_word32_shown_wide;
@@ -791,7 +790,8 @@ wire machine_guard0_limit_x_hit_neg;
 wire machine_guard0_limit_y_hit_pos;
 wire machine_guard0_limit_y_hit_neg;
 reg [23:0] homing0_addend;
-reg homing0_axis;
+reg [2:0] homing0_asked;
+reg [2:0] homing0_axis;
 reg homing0_done;
 reg homing0_finished;
 reg homing0_gave_up;
@@ -808,6 +808,8 @@ reg homing0_seeking;
 wire [23:0] homing0_signed_count;
 reg [2:0] homing0_state;
 reg homing0_switch;
+reg homing0_valid;
+wire [1:0] homing0_port_home;
 reg homing0_port_load;
 reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
@@ -881,6 +883,8 @@ assign machine_guard0_hits[3] = machine_guard0_limit_y_hit_neg;
 assign machine_guard0_hits[2] = machine_guard0_limit_y_hit_pos;
 assign machine_guard0_hits[1] = machine_guard0_limit_x_hit_neg;
 assign machine_guard0_hits[0] = machine_guard0_limit_x_hit_pos;
+assign homing0_port_home[1] = conditioning_active[6];
+assign homing0_port_home[0] = conditioning_active[5];
 
 
 
@@ -2486,7 +2490,7 @@ end
 
 
 
-assign reg_word31_shown_wide = {30'h0, reg_word31_shown};
+assign reg_word31_shown_wide = {25'h0, reg_word31_shown};
 
 
 
@@ -2494,11 +2498,11 @@ assign reg_word31_mine_write = (written_addr == 124);
 
 
 
-assign reg_word31_written = (written_data[2-1:0] & written_mask[2-1:0]);
+assign reg_word31_written = (written_data[7-1:0] & written_mask[7-1:0]);
 
 
 
-assign reg_word31_honoured = reg_word31_written[2-1:0];
+assign reg_word31_honoured = reg_word31_written[7-1:0];
 
 
 
@@ -4468,8 +4472,23 @@ always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
 end
 
 
-always @(reg_word36_shown, reg_word35_shown, home_inputs, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
-    homing0_switch = homing0_axis ? home_inputs[1] : home_inputs[0];
+always @(reg_word31__store21_word_value) begin: homing0_ask
+    if ((reg_word31__store21_word_value[7-1:4] != 0)) begin
+        homing0_asked = reg_word31__store21_word_value[7-1:4];
+        homing0_valid = (reg_word31__store21_word_value[7-1:4] < 2);
+    end
+    else begin
+        homing0_asked = reg_word31__store21_word_value[0];
+        homing0_valid = 1'b1;
+    end
+end
+
+
+always @(reg_word36_shown, reg_word35_shown, homing0_port_home, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
+    homing0_switch = 0;
+    if ((homing0_axis < 2)) begin
+        homing0_switch = homing0_port_home[homing0_axis];
+    end
     homing0_seeking = ((homing0_state == 3'b001) || (homing0_state == 3'b010));
     homing0_seek_next = ((homing0_state == 3'b000) || (homing0_state == 3'b001) || ((homing0_state == 3'b010) && (!homing0_switch)));
     if (((homing0_state == 3'b011) || (homing0_state == 3'b100))) begin
@@ -4529,6 +4548,7 @@ end
 always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
     reg drained;
     reg released;
+    reg [2-1:0] zero;
     drained = ((!pulse_busy) && (!out_active));
     released = ((homing0_state == 3'b100) && (!homing0_switch));
     homing0_opened = released;
@@ -4536,15 +4556,11 @@ always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) be
     homing0_finished = ((homing0_state == 3'b110) && (!out_active));
     home_cut = ((homing0_state == 3'b010) && homing0_switch);
     homing0_port_retarget = released;
-    home_zero = 0;
-    if (released) begin
-        if (homing0_axis) begin
-            home_zero = 2;
-        end
-        else begin
-            home_zero = 1;
-        end
+    zero = 2'h0;
+    if ((released && (homing0_axis < 2))) begin
+        zero[homing0_axis] = 1;
     end
+    home_zero = zero;
 end
 
 
@@ -4565,12 +4581,13 @@ end
 
 
 always @(homing0_negative, homing0_phase, homing0_done, homing0_refused, reg_word31__store21_word_strobe, homing0_axis, homing0_state, homing0_not_found) begin: homing0_show
-    reg [2-1:0] asked;
+    reg [7-1:0] taken;
     reg [6-1:0] word;
-    asked = 2'h0;
-    asked[0] = homing0_axis;
-    asked[1] = homing0_negative;
-    reg_word31_shown = asked;
+    taken = 7'h0;
+    taken[0] = homing0_axis[0];
+    taken[1] = homing0_negative;
+    taken[7-1:4] = homing0_axis;
+    reg_word31_shown = taken;
     word = 6'h0;
     word[0] = ((homing0_state != 3'b000) || reg_word31__store21_word_strobe);
     word[1] = homing0_done;
@@ -4602,12 +4619,12 @@ always @(posedge clock, negedge reset) begin: homing0_outcome
         end
         else if ((homing0_state == 3'b000)) begin
             if (reg_word31__store21_word_strobe) begin
-                homing0_axis <= reg_word31__store21_word_value[0];
+                homing0_axis <= homing0_asked;
                 homing0_negative <= reg_word31__store21_word_value[1];
                 homing0_done <= 0;
                 homing0_not_found <= 0;
-                homing0_refused <= (!home_idle);
-                homing0_port_ended <= (!home_idle);
+                homing0_refused <= ((!home_idle) || (!homing0_valid));
+                homing0_port_ended <= ((!home_idle) || (!homing0_valid));
             end
         end
         else begin
@@ -4637,7 +4654,7 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
             homing0_state <= 3'b000;
         end
         else if ((homing0_state == 3'b000)) begin
-            if ((reg_word31__store21_word_strobe && home_idle)) begin
+            if ((reg_word31__store21_word_strobe && home_idle && homing0_valid)) begin
                 homing0_state <= 3'b001;
             end
         end
@@ -4748,7 +4765,6 @@ always @(feed_held, fifo_empty, out_ready, core_clear, guard_stopped, command, a
     sequencer_clear = (core_clear || guard_stopped);
     home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
     direct_clear = (core_clear || home_cut);
-    home_inputs = conditioning_active[5+:2];
     drive_cleared = 0;
     if (guard_stopped) begin
         drive_cleared = 1;
@@ -4803,11 +4819,11 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
-    direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 0));
+    direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
-        direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[0] == 0));
+        direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 0));
         direct_pulse0_command_count = homing0_port_count;
         direct_pulse0_command_period = homing0_port_period;
     end
@@ -4822,11 +4838,11 @@ always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarge
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
-    direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 1));
+    direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
-        direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[0] == 1));
+        direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 1));
         direct_pulse1_command_count = homing0_port_count;
         direct_pulse1_command_period = homing0_port_period;
     end

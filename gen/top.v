@@ -292,6 +292,7 @@ reg [3:0] card1_card_core1_regs_fifo2_set_index;
 reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
+reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg [1:0] card1_card_core1_regs_fifo2_step_mode;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
@@ -314,8 +315,6 @@ wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 wire card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
 reg card1_card_core1_regs_fifo2_home_idle;
-reg [1:0] card1_card_core1_regs_fifo2_home_inputs;
-reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
@@ -651,18 +650,18 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
 reg card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word112__store76_word_value;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
 wire card1_card_core1_regs_fifo2_reg_word113_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word113_shown;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word113_shown;
 reg card1_card_core1_regs_fifo2_reg_word113_clamped;
 wire card1_card_core1_regs_fifo2_reg_word113_mine;
 wire card1_card_core1_regs_fifo2_reg_word113_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word113_shown_wide;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word113_written;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word113_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped;
 reg card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word113__store77_word_value;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word113__store77_word_value;
 reg [5:0] card1_card_core1_regs_fifo2_reg_word114_shown;
 wire card1_card_core1_regs_fifo2_reg_word114_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word114_shown_wide;
@@ -923,7 +922,8 @@ wire card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_neg;
 wire card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_pos;
 wire card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_neg;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_addend;
-reg card1_card_core1_regs_fifo2_homing2_axis;
+reg [2:0] card1_card_core1_regs_fifo2_homing2_asked;
+reg [2:0] card1_card_core1_regs_fifo2_homing2_axis;
 reg card1_card_core1_regs_fifo2_homing2_done;
 reg card1_card_core1_regs_fifo2_homing2_finished;
 reg card1_card_core1_regs_fifo2_homing2_gave_up;
@@ -940,6 +940,8 @@ reg card1_card_core1_regs_fifo2_homing2_seeking;
 wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
 reg [2:0] card1_card_core1_regs_fifo2_homing2_state;
 reg card1_card_core1_regs_fifo2_homing2_switch;
+reg card1_card_core1_regs_fifo2_homing2_valid;
+wire [1:0] card1_card_core1_regs_fifo2_homing2_port_home;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
@@ -1224,6 +1226,8 @@ assign card1_card_core1_regs_fifo2_machine_guard2_hits[3] = card1_card_core1_reg
 assign card1_card_core1_regs_fifo2_machine_guard2_hits[2] = card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_pos;
 assign card1_card_core1_regs_fifo2_machine_guard2_hits[1] = card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_neg;
 assign card1_card_core1_regs_fifo2_machine_guard2_hits[0] = card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_pos;
+assign card1_card_core1_regs_fifo2_homing2_port_home[1] = card1_card_core1_regs_fifo2_conditioning_active[6];
+assign card1_card_core1_regs_fifo2_homing2_port_home[0] = card1_card_core1_regs_fifo2_conditioning_active[5];
 
 
 assign pci_pins_serr = pci_pads0_tristate_pad0_enable ? pci_pads0_tristate_pad0_to_pin : {1{1'bz}};
@@ -4816,7 +4820,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
+assign card1_card_core1_regs_fifo2_reg_word113_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
 
 
 
@@ -4824,11 +4828,11 @@ assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word113_written = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[7-1:0];
 
 
 
@@ -6798,8 +6802,23 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word118_shown, card1_card_core1_regs_fifo2_reg_word117_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
-    card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
+always @(card1_card_core1_regs_fifo2_reg_word113__store77_word_value) begin: card1_card_core1_regs_fifo2_homing2_ask
+    if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_homing2_asked = card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4];
+        card1_card_core1_regs_fifo2_homing2_valid = (card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4] < 2);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_asked = card1_card_core1_regs_fifo2_reg_word113__store77_word_value[0];
+        card1_card_core1_regs_fifo2_homing2_valid = 1'b1;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118_shown, card1_card_core1_regs_fifo2_reg_word117_shown, card1_card_core1_regs_fifo2_homing2_port_home, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+    card1_card_core1_regs_fifo2_homing2_switch = 0;
+    if ((card1_card_core1_regs_fifo2_homing2_axis < 2)) begin
+        card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_port_home[card1_card_core1_regs_fifo2_homing2_axis];
+    end
     card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
     card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
     if (((card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b100))) begin
@@ -6859,6 +6878,7 @@ end
 always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
     reg drained;
     reg released;
+    reg [2-1:0] zero;
     drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
     released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
     card1_card_core1_regs_fifo2_homing2_opened = released;
@@ -6866,15 +6886,11 @@ always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pul
     card1_card_core1_regs_fifo2_homing2_finished = ((card1_card_core1_regs_fifo2_homing2_state == 3'b110) && (!card1_card_core1_regs_fifo2_out_active));
     card1_card_core1_regs_fifo2_home_cut = ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch);
     card1_card_core1_regs_fifo2_homing2_port_retarget = released;
-    card1_card_core1_regs_fifo2_home_zero = 0;
-    if (released) begin
-        if (card1_card_core1_regs_fifo2_homing2_axis) begin
-            card1_card_core1_regs_fifo2_home_zero = 2;
-        end
-        else begin
-            card1_card_core1_regs_fifo2_home_zero = 1;
-        end
+    zero = 2'h0;
+    if ((released && (card1_card_core1_regs_fifo2_homing2_axis < 2))) begin
+        zero[card1_card_core1_regs_fifo2_homing2_axis] = 1;
     end
+    card1_card_core1_regs_fifo2_home_zero = zero;
 end
 
 
@@ -6895,12 +6911,13 @@ end
 
 
 always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
-    reg [2-1:0] asked;
+    reg [7-1:0] taken;
     reg [6-1:0] word;
-    asked = 2'h0;
-    asked[0] = card1_card_core1_regs_fifo2_homing2_axis;
-    asked[1] = card1_card_core1_regs_fifo2_homing2_negative;
-    card1_card_core1_regs_fifo2_reg_word113_shown = asked;
+    taken = 7'h0;
+    taken[0] = card1_card_core1_regs_fifo2_homing2_axis[0];
+    taken[1] = card1_card_core1_regs_fifo2_homing2_negative;
+    taken[7-1:4] = card1_card_core1_regs_fifo2_homing2_axis;
+    card1_card_core1_regs_fifo2_reg_word113_shown = taken;
     word = 6'h0;
     word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe);
     word[1] = card1_card_core1_regs_fifo2_homing2_done;
@@ -6932,12 +6949,12 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
             if (card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe) begin
-                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word113__store77_word_value[0];
+                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_homing2_asked;
                 card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word113__store77_word_value[1];
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
-                card1_card_core1_regs_fifo2_homing2_refused <= (!card1_card_core1_regs_fifo2_home_idle);
-                card1_card_core1_regs_fifo2_homing2_port_ended <= (!card1_card_core1_regs_fifo2_home_idle);
+                card1_card_core1_regs_fifo2_homing2_refused <= ((!card1_card_core1_regs_fifo2_home_idle) || (!card1_card_core1_regs_fifo2_homing2_valid));
+                card1_card_core1_regs_fifo2_homing2_port_ended <= ((!card1_card_core1_regs_fifo2_home_idle) || (!card1_card_core1_regs_fifo2_homing2_valid));
             end
         end
         else begin
@@ -6967,7 +6984,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle)) begin
+            if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle && card1_card_core1_regs_fifo2_homing2_valid)) begin
                 card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
             end
         end
@@ -7078,7 +7095,6 @@ always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo
     card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
     card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
     card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
-    card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
     card1_card_core1_regs_fifo2_drive_cleared = 0;
     if (card1_card_core1_regs_fifo2_guard_stopped) begin
         card1_card_core1_regs_fifo2_drive_cleared = 1;
@@ -7133,11 +7149,11 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
-    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[0] == 0));
+    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[0] == 0));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
@@ -7152,11 +7168,11 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
-    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[0] == 1));
+    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[0] == 1));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end

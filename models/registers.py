@@ -64,7 +64,7 @@ VERSIONS = (
              "a POS_X read snapshots every other axis's position; DIR_POLARITY.Z .. C"),
     (0x0203, "the limit and home inputs of every axis (INPUT_POLARITY bits 7..18: LIMIT_POS_Z, LIMIT_NEG_Z, "
              "HOME_Z, then A, B, C's), INPUT_RAW and INPUT_ACTIVE (every input; MACHINE_STATUS keeps X's and "
-             "Y's), STOP_REASON.LIMITS widened to bits 15:4 (docs/machine.md)"),
+             "Y's), STOP_REASON.LIMITS widened to bits 15:4; HOME.AXIS_INDEX homes any axis (docs/machine.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
@@ -308,14 +308,18 @@ REGISTERS = (
                   f"above {(1 << WATCHDOG_BITS) - 1} loads {(1 << WATCHDOG_BITS) - 1}"),
              minimum=0, maximum=(1 << WATCHDOG_BITS) - 1),
     Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
-        Field("AXIS", 0, 1, "0: X, 1: Y"),
+        Field("AXIS", 0, 1, "written with AXIS_INDEX 0 (as a two-axis host writes it): 0 homes X, 1 Y; reads the "
+              "low bit of the axis asked"),
         Field("NEGATIVE", 1, 1, "1: the switch is towards negative positions"),
+        Field("AXIS_INDEX", 4, 3, "the axis to home, 1 Y, 2 Z, 3 A, 4 B, 5 C (0: the one AXIS names); an axis the "
+              "card lacks is REFUSED; reads the axis asked"),
     )),
     Register("HOME_STATUS", 0x80, "RO", 0, "the homing's state", (
         Field("BUSY", 0, 1, "homing under way (from the clock the HOME write is taken)"),
         Field("DONE", 1, 1, "the last HOME ended with the position zeroed at the release point"),
         Field("NOT_FOUND", 2, 1, "the switch did not trip (or release) within HOME_SEARCH steps"),
-        Field("REFUSED", 3, 1, "a HOME came while the card was not idle, was stopped, or was homing"),
+        Field("REFUSED", 3, 1, "a HOME came while the card was not idle, was stopped, or was homing, or named "
+              "an axis the card lacks"),
         Field("PHASE", 4, 2, ", ".join(f"{code} {name}" for code, name in enumerate(HOME_PHASES))),
     )),
     Register("HOME_SEEK_PERIOD", 0x84, "RW", 100, "clocks between steps towards the home switch",

@@ -129,11 +129,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     requested = ConcatSignal(*reversed([requests.step(axis) for axis in range(axes)]))
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
     home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
-    home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
+    home_zero = Signal(intbv(0)[axes:])
     step_mode = values["STEP_MODE"]   # named at this level, as the formal harnesses know it
-    # homing zeroes X or Y (HOME.AXIS): zero_axes widens its bits to every axis's
-    zero = home_zero if axes == len(home_zero) else Signal(intbv(0)[axes:])
-    outputs = PulseControl(axes, clear=pulse_clear, clear_position=clear_position, zero=zero,
+    outputs = PulseControl(axes, clear=pulse_clear, clear_position=clear_position, zero=home_zero,
                            width=values["STEP_WIDTH"], space=values["STEP_SPACE"], mode=step_mode,
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            **{f"polarity_{name.lower()}": values["DIR_POLARITY"](axis)
@@ -179,7 +177,9 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
                          clear_stop=clear_stop, held=settled, pulsing=outputs.pulsing,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
                          drive_enable=pins.drive_enable, watchdog_left=watchdog_left)
-    home = Homing(start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
+    # every axis's filtered home input, bit i axis i's
+    home_inputs = ConcatSignal(*reversed([conditioning.active(regmap.home_input(axis)) for axis in range(axes)]))
+    home = Homing(axes, start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
                   release_period=values["HOME_RELEASE_PERIOD"], backoff=values["HOME_BACKOFF"],
                   search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
                   outputs_active=out_active, zero=home_zero, taken=hw["HOME"], state=hw["HOME_STATUS"],
@@ -193,7 +193,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
     reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
                                                                                 "CLEAR_POSITION", "CLEAR_STOP"))
-    home_x, estop = regmap.INPUT_NAMES.index("HOME_X"), regmap.INPUT_NAMES.index("ESTOP")
+    estop = regmap.INPUT_NAMES.index("ESTOP")
     command_offset = regmap.offset("COMMAND")
 
     @always_comb
@@ -264,7 +264,6 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         # HOME starts only with nothing queued, moving or stopped; its cut clears the direct pulses
         home_idle.next = not any_busy and fifo_empty and not guard.stopped and not halt
         direct_clear.next = core_clear or home.cut
-        home_inputs.next = conditioning.active[home_x + 2:home_x]
         # a stop clears MACHINE_CONTROL.DRIVE_ENABLE and holds it at 0: CLEAR_STOP does not re-energise
         drive_cleared.next = 0
         if guard.stopped:
@@ -305,12 +304,6 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     def copy_level():   # a FIFO of 2**15 words: the level fills the field
         level_wide.next = fifo_level
 
-    zero_pad = axes - len(home_zero)
-
-    @always_comb
-    def zero_axes():
-        zero.next = concat(intbv(0)[zero_pad:], home_zero)
-
     direct_request_x, direct_request_y = direct_request[:2]
     direct_dir_x, direct_dir_y = direct_dir[:2]
 
@@ -339,9 +332,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
 
     units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before,
               pulse_activity, merge_requests, widen_level if level_pad else copy_level]
-    if zero is not home_zero:
-        units.append(zero_axes)
-    home_axis = hw["HOME"](_bit("HOME", "AXIS"))
+    index = regmap.register("HOME").field("AXIS_INDEX")
+    home_axis = hw["HOME"](index.lsb + index.width, index.lsb)   # the homed axis, as HOME reads it
     for axis, name in enumerate(axis_names):
         units.append(pulse_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"], halt,
                                   values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))

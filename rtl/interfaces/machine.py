@@ -60,33 +60,35 @@ class MachineGuard:
 
 
 class Homing:
-    """The homing sequencer's seam with the card (``rtl/machine/homing.py``).
+    """The homing sequencer's seam with the card (``rtl/machine/homing.py``) of a card of ``axes`` axes.
 
     The card drives ``start`` (one clock per HOME write) with ``request``
-    (HOME's AXIS and NEGATIVE bits as written), ``seek_period``,
+    (HOME's AXIS, NEGATIVE and AXIS_INDEX as written), ``seek_period``,
     ``release_period``, ``backoff`` and ``search`` (HOME_SEEK_PERIOD,
     HOME_RELEASE_PERIOD, HOME_BACKOFF, HOME_SEARCH), ``home`` (the filtered
-    HOME_X, HOME_Y inputs, bit 0 X), ``idle`` (nothing queued, moving or
+    home inputs, bit i axis i's: HOME_X, HOME_Y, HOME_Z, ...), ``idle`` (nothing queued, moving or
     stopped: a HOME may start), ``clear`` (a stop or SOFT_RESET),
     ``pulse_busy`` (a direct-pulse generator is busy) and ``outputs_active``
     (a step is queued in the pulse outputs or on the pins).  The sequencer
     drives ``busy``, the homed axis's direct-pulse command (``load`` one
     clock with ``count``, signed, at ``period``; ``cut`` clears it;
     ``retarget`` makes |``count``| its steps still to go, timing kept),
-    ``zero`` (one clock: zero the homed axis's position; bit 0 X),
+    ``zero`` (one clock: zero the homed axis's position; bit i axis i),
     ``ended`` (one clock as a HOME ends: done, not found or refused),
-    ``taken`` (what HOME reads: the AXIS and NEGATIVE of the last HOME) and
+    ``taken`` (what HOME reads: AXIS, NEGATIVE and AXIS_INDEX of the last HOME) and
     ``state`` (what HOME_STATUS reads)."""
 
-    def __init__(self, **given):
+    def __init__(self, axes=AXES.default, **given):
+        self.axes = axes
         home, status, seek, backoff, search = (regmap.register(name) for name in (
             "HOME", "HOME_STATUS", "HOME_SEEK_PERIOD", "HOME_BACKOFF", "HOME_SEARCH"))
         count = search.width + 1
         adopt(self, given, start=Signal(bool(0)), request=Signal(intbv(0)[home.width:]),
                seek_period=Signal(intbv(1)[seek.width:]), release_period=Signal(intbv(1)[seek.width:]),
                backoff=Signal(intbv(0)[backoff.width:]), search=Signal(intbv(1)[search.width:]),
-               home=Signal(intbv(0)[2:]), idle=Signal(bool(0)), clear=Signal(bool(0)),
+               home=Signal(intbv(0)[axes:]), idle=Signal(bool(0)), clear=Signal(bool(0)),
                pulse_busy=Signal(bool(0)), outputs_active=Signal(bool(0)), busy=Signal(bool(0)),
                load=Signal(bool(0)), count=Signal(intbv(0, min=-(1 << (count - 1)), max=1 << (count - 1))),
-               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), retarget=Signal(bool(0)), zero=Signal(intbv(0)[2:]),
-               ended=Signal(bool(0)), taken=Signal(intbv(0)[home.width:]), state=Signal(intbv(0)[status.width:]))
+               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), retarget=Signal(bool(0)),
+               zero=Signal(intbv(0)[axes:]), ended=Signal(bool(0)), taken=Signal(intbv(0)[home.width:]),
+               state=Signal(intbv(0)[status.width:]))
