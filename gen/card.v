@@ -915,6 +915,7 @@ reg card_core0_regs_fifo1_homing1_refused;
 reg card_core0_regs_fifo1_homing1_seek_next;
 reg card_core0_regs_fifo1_homing1_seeking;
 wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
+wire [0:0] card_core0_regs_fifo1_homing1_slot;
 reg [2:0] card_core0_regs_fifo1_homing1_state;
 reg card_core0_regs_fifo1_homing1_switch;
 reg card_core0_regs_fifo1_homing1_valid;
@@ -5977,16 +5978,20 @@ always @(card_core0_regs_fifo1_reg_word72__store49_word_value) begin: card_core0
         card_core0_regs_fifo1_homing1_valid = (card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4] < 2);
     end
     else begin
-        card_core0_regs_fifo1_homing1_asked = card_core0_regs_fifo1_reg_word72__store49_word_value[0];
+        card_core0_regs_fifo1_homing1_asked = {2'h0, card_core0_regs_fifo1_reg_word72__store49_word_value[0]};
         card_core0_regs_fifo1_homing1_valid = 1'b1;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word77_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_homing1_port_home, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+
+assign card_core0_regs_fifo1_homing1_slot = card_core0_regs_fifo1_homing1_axis[1-1:0];
+
+
+always @(card_core0_regs_fifo1_reg_word77_shown, card_core0_regs_fifo1_homing1_slot, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_homing1_port_home, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
     card_core0_regs_fifo1_homing1_switch = 0;
     if ((card_core0_regs_fifo1_homing1_axis < 2)) begin
-        card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_port_home[card_core0_regs_fifo1_homing1_axis];
+        card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_port_home[card_core0_regs_fifo1_homing1_slot];
     end
     card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
     card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
@@ -6044,7 +6049,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next
 end
 
 
-always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
+always @(card_core0_regs_fifo1_homing1_slot, card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
     reg drained;
     reg released;
     reg [2-1:0] zero;
@@ -6057,7 +6062,7 @@ always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, car
     card_core0_regs_fifo1_homing1_port_retarget = released;
     zero = 2'h0;
     if ((released && (card_core0_regs_fifo1_homing1_axis < 2))) begin
-        zero[card_core0_regs_fifo1_homing1_axis] = 1;
+        zero[card_core0_regs_fifo1_homing1_slot] = 1;
     end
     card_core0_regs_fifo1_home_zero = zero;
 end

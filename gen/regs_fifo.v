@@ -806,6 +806,7 @@ reg homing0_refused;
 reg homing0_seek_next;
 reg homing0_seeking;
 wire [23:0] homing0_signed_count;
+wire [0:0] homing0_slot;
 reg [2:0] homing0_state;
 reg homing0_switch;
 reg homing0_valid;
@@ -4478,16 +4479,20 @@ always @(reg_word31__store21_word_value) begin: homing0_ask
         homing0_valid = (reg_word31__store21_word_value[7-1:4] < 2);
     end
     else begin
-        homing0_asked = reg_word31__store21_word_value[0];
+        homing0_asked = {2'h0, reg_word31__store21_word_value[0]};
         homing0_valid = 1'b1;
     end
 end
 
 
-always @(reg_word36_shown, reg_word35_shown, homing0_port_home, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
+
+assign homing0_slot = homing0_axis[1-1:0];
+
+
+always @(reg_word36_shown, homing0_slot, reg_word35_shown, homing0_port_home, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
     homing0_switch = 0;
     if ((homing0_axis < 2)) begin
-        homing0_switch = homing0_port_home[homing0_axis];
+        homing0_switch = homing0_port_home[homing0_slot];
     end
     homing0_seeking = ((homing0_state == 3'b001) || (homing0_state == 3'b010));
     homing0_seek_next = ((homing0_state == 3'b000) || (homing0_state == 3'b001) || ((homing0_state == 3'b010) && (!homing0_switch)));
@@ -4545,7 +4550,7 @@ always @(posedge clock, negedge reset) begin: homing0_next_load
 end
 
 
-always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
+always @(homing0_slot, out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
     reg drained;
     reg released;
     reg [2-1:0] zero;
@@ -4558,7 +4563,7 @@ always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) be
     homing0_port_retarget = released;
     zero = 2'h0;
     if ((released && (homing0_axis < 2))) begin
-        zero[homing0_axis] = 1;
+        zero[homing0_slot] = 1;
     end
     home_zero = zero;
 end

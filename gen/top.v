@@ -938,6 +938,7 @@ reg card1_card_core1_regs_fifo2_homing2_refused;
 reg card1_card_core1_regs_fifo2_homing2_seek_next;
 reg card1_card_core1_regs_fifo2_homing2_seeking;
 wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
+wire [0:0] card1_card_core1_regs_fifo2_homing2_slot;
 reg [2:0] card1_card_core1_regs_fifo2_homing2_state;
 reg card1_card_core1_regs_fifo2_homing2_switch;
 reg card1_card_core1_regs_fifo2_homing2_valid;
@@ -6808,16 +6809,20 @@ always @(card1_card_core1_regs_fifo2_reg_word113__store77_word_value) begin: car
         card1_card_core1_regs_fifo2_homing2_valid = (card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4] < 2);
     end
     else begin
-        card1_card_core1_regs_fifo2_homing2_asked = card1_card_core1_regs_fifo2_reg_word113__store77_word_value[0];
+        card1_card_core1_regs_fifo2_homing2_asked = {2'h0, card1_card_core1_regs_fifo2_reg_word113__store77_word_value[0]};
         card1_card_core1_regs_fifo2_homing2_valid = 1'b1;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word118_shown, card1_card_core1_regs_fifo2_reg_word117_shown, card1_card_core1_regs_fifo2_homing2_port_home, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+
+assign card1_card_core1_regs_fifo2_homing2_slot = card1_card_core1_regs_fifo2_homing2_axis[1-1:0];
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118_shown, card1_card_core1_regs_fifo2_homing2_slot, card1_card_core1_regs_fifo2_reg_word117_shown, card1_card_core1_regs_fifo2_homing2_port_home, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
     card1_card_core1_regs_fifo2_homing2_switch = 0;
     if ((card1_card_core1_regs_fifo2_homing2_axis < 2)) begin
-        card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_port_home[card1_card_core1_regs_fifo2_homing2_axis];
+        card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_port_home[card1_card_core1_regs_fifo2_homing2_slot];
     end
     card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
     card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
@@ -6875,7 +6880,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
-always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
+always @(card1_card_core1_regs_fifo2_homing2_slot, card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
     reg drained;
     reg released;
     reg [2-1:0] zero;
@@ -6888,7 +6893,7 @@ always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pul
     card1_card_core1_regs_fifo2_homing2_port_retarget = released;
     zero = 2'h0;
     if ((released && (card1_card_core1_regs_fifo2_homing2_axis < 2))) begin
-        zero[card1_card_core1_regs_fifo2_homing2_axis] = 1;
+        zero[card1_card_core1_regs_fifo2_homing2_slot] = 1;
     end
     card1_card_core1_regs_fifo2_home_zero = zero;
 end

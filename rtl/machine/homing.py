@@ -60,6 +60,8 @@ def homing(clock, reset, port):
         raise ValueError(f"homing: home and zero of {len(port.home)}, {len(port.zero)} bits for {axes} axes")
     axis, asked = (Signal(intbv(0)[index_field.width:]) for _ in range(2))
     negative, valid = Signal(bool(0)), Signal(bool(0))
+    slot_bits = max(1, (axes - 1).bit_length())
+    slot = Signal(intbv(0)[slot_bits:])   # the homed axis as an index of ``home`` and ``zero``, as wide as they ask
     done, not_found, refused = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     switch, positive, seeking, seek_next = (Signal(bool(0)) for _ in range(4))
     opened, gave_up, finished = (Signal(bool(0)) for _ in range(3))   # opened: the switch released in RELEASE
@@ -83,14 +85,18 @@ def homing(clock, reset, port):
             asked.next = port.request[index_msb:index_lsb]
             valid.next = port.request[index_msb:index_lsb] < axes
         else:
-            asked.next = port.request[axis_bit]
+            asked.next = concat(intbv(0)[index_field.width - 1:], port.request[axis_bit])
             valid.next = True   # X or Y: every card has them
+
+    @always_comb
+    def index():
+        slot.next = axis[slot_bits:]
 
     @always_comb
     def select():
         switch.next = 0
         if axis < axes:
-            switch.next = port.home[axis]
+            switch.next = port.home[slot]
         seeking.next = state == state_t.SEEK_LOAD or state == state_t.SEEK
         seek_next.next = state == state_t.IDLE or state == state_t.SEEK_LOAD or (state == state_t.SEEK and not switch)
         # the load after IDLE is the seek's, after SEEK the release's; the retarget in RELEASE the back-off's
@@ -141,7 +147,7 @@ def homing(clock, reset, port):
         port.retarget.next = released
         zero = intbv(0)[axes:]
         if released and axis < axes:
-            zero[axis] = 1
+            zero[slot] = 1
         port.zero.next = zero
 
     @always_comb
@@ -225,7 +231,7 @@ def homing(clock, reset, port):
             if not port.pulse_busy:
                 state.next = state_t.SETTLE
 
-    return ask, select, command, sign, negate, next_load, edges, phases, show, outcome, sequence
+    return ask, index, select, command, sign, negate, next_load, edges, phases, show, outcome, sequence
 
 
 def homing_ports(axes=AXES.default):
