@@ -347,7 +347,8 @@ REGISTERS = (
              tuple(Field(name, bit, 1, f"the {text} pin") for bit, (name, text) in enumerate(_INPUT_TEXT))),
     Register("INPUT_ACTIVE", 0xA0, "RO", 0, "every input filtered, polarity applied: 1 active (the bits of "
              "inputs the card lacks read 0)",
-             tuple(Field(name, bit, 1, f"1: the {text} input is active") for bit, (name, text) in enumerate(_INPUT_TEXT))),
+             tuple(Field(name, bit, 1, f"1: the {text} input is active")
+                   for bit, (name, text) in enumerate(_INPUT_TEXT))),
 )
 
 # The per-axis blocks, in BAR2 only (the I/O BAR0 keeps to PCI's 256 bytes): block i, for axis i,

@@ -171,7 +171,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         units.append(direct_pulse(clock, reset, command=direct[axis], out=direct_out[axis]))
     units.append(axis_block(clock, reset, axis_regs, axes=axes))
     units.append(pulse_out(clock, reset, request=granted, control=outputs, pins=pins, position=position))
-    conditioning = InputConditioning(axes, pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
+    conditioning = InputConditioning(axes, pins=ConcatSignal(*reversed(pins.inputs())),
+                                     polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
     guard = MachineGuard(axes, active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
                          clear_stop=clear_stop, held=settled, pulsing=outputs.pulsing,

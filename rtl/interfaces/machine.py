@@ -42,7 +42,8 @@ class MachineGuard:
     pulse: stopped, or the E-stop input active), ``stopping`` (a
     decelerated stop is under way: the feed rate pauses), ``stopped`` (the
     latch), ``stop_event`` (one clock, as the latch sets), ``reason`` and
-    ``limits`` (STOP_REASON; ``limits`` has the card's axes' bits, two an axis), ``drive_enable`` (the pin, from a flip-flop)
+    ``limits`` (STOP_REASON; ``limits`` has the card's axes' bits, two an axis),
+    ``drive_enable`` (the pin, from a flip-flop)
     and ``watchdog_left`` (clocks before the watchdog expires)."""
 
     def __init__(self, axes=AXES.default, **given):
