@@ -269,6 +269,7 @@ reg [3:0] card_core0_regs_fifo1_set_index;
 reg [31:0] card_core0_regs_fifo1_set_value;
 reg [3:0] card_core0_regs_fifo1_error_code;
 reg card_core0_regs_fifo1_seq_load;
+reg [1:0] card_core0_regs_fifo1_home_zero;
 reg [1:0] card_core0_regs_fifo1_step_mode;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
@@ -291,8 +292,6 @@ wire [9:0] card_core0_regs_fifo1_fifo_level;
 wire card_core0_regs_fifo1_halt;
 wire card_core0_regs_fifo1_hold;
 reg card_core0_regs_fifo1_home_idle;
-reg [1:0] card_core0_regs_fifo1_home_inputs;
-reg [1:0] card_core0_regs_fifo1_home_zero;
 reg card_core0_regs_fifo1_io_read;
 reg card_core0_regs_fifo1_io_write;
 reg card_core0_regs_fifo1_io_written;
@@ -357,106 +356,87 @@ wire card_core0_regs_fifo1_sync_fifo1_last_beyond;
 wire card_core0_regs_fifo1_sync_fifo1_one_word;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_read_addr;
 reg [8:0] card_core0_regs_fifo1_sync_fifo1_write_addr;
-wire [31:0] card_core0_regs_fifo1_reg_word39_shown;
-wire card_core0_regs_fifo1_reg_word39_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word39_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word39_chain_out_data;
-wire [31:0] card_core0_regs_fifo1_reg_word39_chain_in_data;
-wire card_core0_regs_fifo1_reg_word39_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word39_chain_in_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word40_honoured;
-wire card_core0_regs_fifo1_reg_word40_out_of_range;
-reg card_core0_regs_fifo1_reg_word40_clamped;
-wire card_core0_regs_fifo1_reg_word40_mine;
-wire card_core0_regs_fifo1_reg_word40_mine_write;
-wire card_core0_regs_fifo1_reg_word40_set_mine;
-wire [31:0] card_core0_regs_fifo1_reg_word40_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word40_written;
-reg [31:0] card_core0_regs_fifo1_reg_word40_chain_out_data;
-wire card_core0_regs_fifo1_reg_word40_chain_out_clamped;
-wire [3:0] card_core0_regs_fifo1_reg_word41_honoured;
-wire card_core0_regs_fifo1_reg_word41_out_of_range;
-wire [3:0] card_core0_regs_fifo1_reg_word41_shown;
-reg card_core0_regs_fifo1_reg_word41_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word41_shown;
 wire card_core0_regs_fifo1_reg_word41_mine;
-wire card_core0_regs_fifo1_reg_word41_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word41_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word41_written;
 reg [31:0] card_core0_regs_fifo1_reg_word41_chain_out_data;
+wire [31:0] card_core0_regs_fifo1_reg_word41_chain_in_data;
 wire card_core0_regs_fifo1_reg_word41_chain_out_clamped;
-reg [31:0] card_core0_regs_fifo1_reg_word42_shown;
+wire card_core0_regs_fifo1_reg_word41_chain_in_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word42_honoured;
+wire card_core0_regs_fifo1_reg_word42_out_of_range;
+reg card_core0_regs_fifo1_reg_word42_clamped;
 wire card_core0_regs_fifo1_reg_word42_mine;
+wire card_core0_regs_fifo1_reg_word42_mine_write;
+wire card_core0_regs_fifo1_reg_word42_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word43_honoured;
+wire [3:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word43_shown;
+wire [3:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
-wire card_core0_regs_fifo1_reg_word43_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-reg [7:0] card_core0_regs_fifo1_reg_word43_written;
+wire [3:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word44_honoured;
-reg [7:0] card_core0_regs_fifo1_reg_word44_shown;
+reg [31:0] card_core0_regs_fifo1_reg_word44_shown;
 wire card_core0_regs_fifo1_reg_word44_mine;
-wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
-wire [7:0] card_core0_regs_fifo1_reg_word44_written;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word44__store31_word_hw;
-reg [15:0] card_core0_regs_fifo1_reg_word45_honoured;
-reg card_core0_regs_fifo1_reg_word45_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word45_shown;
+wire [7:0] card_core0_regs_fifo1_reg_word45_honoured;
+wire card_core0_regs_fifo1_reg_word45_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word45_shown;
 reg card_core0_regs_fifo1_reg_word45_clamped;
 wire card_core0_regs_fifo1_reg_word45_mine;
 wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word45_written;
+reg [7:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word46_shown;
+wire [7:0] card_core0_regs_fifo1_reg_word46_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word46_shown;
 wire card_core0_regs_fifo1_reg_word46_mine;
+wire card_core0_regs_fifo1_reg_word46_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
+wire [7:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word47_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word46__store31_word_hw;
+reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
+reg card_core0_regs_fifo1_reg_word47_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
+reg card_core0_regs_fifo1_reg_word47_clamped;
 wire card_core0_regs_fifo1_reg_word47_mine;
+wire card_core0_regs_fifo1_reg_word47_mine_write;
+wire card_core0_regs_fifo1_reg_word47_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
-wire [31:0] card_core0_regs_fifo1_reg_word48_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word49_honoured;
-reg card_core0_regs_fifo1_reg_word49_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word49_shown;
-reg card_core0_regs_fifo1_reg_word49_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word49_shown;
 wire card_core0_regs_fifo1_reg_word49_mine;
-wire card_core0_regs_fifo1_reg_word49_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word49_written;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word50_honoured;
-reg card_core0_regs_fifo1_reg_word50_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word50_shown;
-reg card_core0_regs_fifo1_reg_word50_clamped;
+wire [31:0] card_core0_regs_fifo1_reg_word50_shown;
 wire card_core0_regs_fifo1_reg_word50_mine;
-wire card_core0_regs_fifo1_reg_word50_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word50_written;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
 wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word51_honoured;
 reg card_core0_regs_fifo1_reg_word51_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word51_shown;
 reg card_core0_regs_fifo1_reg_word51_clamped;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
@@ -464,9 +444,9 @@ wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word51_written;
 reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
 wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word52_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word52_honoured;
 reg card_core0_regs_fifo1_reg_word52_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word52_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word52_shown;
 reg card_core0_regs_fifo1_reg_word52_clamped;
 wire card_core0_regs_fifo1_reg_word52_mine;
 wire card_core0_regs_fifo1_reg_word52_mine_write;
@@ -474,9 +454,8 @@ wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word53_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word53_honoured;
 reg card_core0_regs_fifo1_reg_word53_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word53_shown;
 reg card_core0_regs_fifo1_reg_word53_clamped;
 wire card_core0_regs_fifo1_reg_word53_mine;
 wire card_core0_regs_fifo1_reg_word53_mine_write;
@@ -494,20 +473,19 @@ wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-wire [5:0] card_core0_regs_fifo1_reg_word55_honoured;
-wire card_core0_regs_fifo1_reg_word55_out_of_range;
-reg [5:0] card_core0_regs_fifo1_reg_word55_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word55_honoured;
+reg card_core0_regs_fifo1_reg_word55_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
-wire card_core0_regs_fifo1_reg_word55_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [5:0] card_core0_regs_fifo1_reg_word55_written;
+reg [31:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word56_honoured;
+reg [7:0] card_core0_regs_fifo1_reg_word56_honoured;
 reg card_core0_regs_fifo1_reg_word56_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word56_shown;
+reg [7:0] card_core0_regs_fifo1_reg_word56_shown;
 reg card_core0_regs_fifo1_reg_word56_clamped;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire card_core0_regs_fifo1_reg_word56_mine_write;
@@ -515,156 +493,155 @@ wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word57_honoured;
-reg card_core0_regs_fifo1_reg_word57_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word57_shown;
+wire [5:0] card_core0_regs_fifo1_reg_word57_honoured;
+wire card_core0_regs_fifo1_reg_word57_out_of_range;
+reg [5:0] card_core0_regs_fifo1_reg_word57_shown;
 reg card_core0_regs_fifo1_reg_word57_clamped;
 wire card_core0_regs_fifo1_reg_word57_mine;
 wire card_core0_regs_fifo1_reg_word57_mine_write;
+wire card_core0_regs_fifo1_reg_word57_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word57_written;
+reg [5:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word58_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word58_honoured;
 reg card_core0_regs_fifo1_reg_word58_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word58_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word58_shown;
 reg card_core0_regs_fifo1_reg_word58_clamped;
 wire card_core0_regs_fifo1_reg_word58_mine;
 wire card_core0_regs_fifo1_reg_word58_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word58_written;
+reg [31:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word58__store42_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word58__store42_word_value;
-reg [23:0] card_core0_regs_fifo1_reg_word59_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word59_honoured;
 reg card_core0_regs_fifo1_reg_word59_out_of_range;
-reg [23:0] card_core0_regs_fifo1_reg_word59_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word59_shown;
 reg card_core0_regs_fifo1_reg_word59_clamped;
 wire card_core0_regs_fifo1_reg_word59_mine;
 wire card_core0_regs_fifo1_reg_word59_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word59_written;
+reg [31:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word59__store43_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word59__store43_word_value;
-wire [31:0] card_core0_regs_fifo1_reg_word60_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word60_honoured;
+reg card_core0_regs_fifo1_reg_word60_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word60_shown;
+reg card_core0_regs_fifo1_reg_word60_clamped;
 wire card_core0_regs_fifo1_reg_word60_mine;
+wire card_core0_regs_fifo1_reg_word60_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word60_written;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
-wire [15:0] card_core0_regs_fifo1_reg_word61_shown;
+reg card_core0_regs_fifo1_reg_word60__store42_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word60__store42_word_value;
+reg [23:0] card_core0_regs_fifo1_reg_word61_honoured;
+reg card_core0_regs_fifo1_reg_word61_out_of_range;
+reg [23:0] card_core0_regs_fifo1_reg_word61_shown;
+reg card_core0_regs_fifo1_reg_word61_clamped;
 wire card_core0_regs_fifo1_reg_word61_mine;
+wire card_core0_regs_fifo1_reg_word61_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word61_written;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word62_shown;
+reg card_core0_regs_fifo1_reg_word61__store43_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word61__store43_word_value;
+wire [31:0] card_core0_regs_fifo1_reg_word62_shown;
 wire card_core0_regs_fifo1_reg_word62_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word62_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word62_chain_out_data;
 wire card_core0_regs_fifo1_reg_word62_chain_out_clamped;
-wire [1:0] card_core0_regs_fifo1_reg_word63_honoured;
-wire card_core0_regs_fifo1_reg_word63_out_of_range;
-reg card_core0_regs_fifo1_reg_word63_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word63_shown;
 wire card_core0_regs_fifo1_reg_word63_mine;
-wire card_core0_regs_fifo1_reg_word63_mine_write;
-wire card_core0_regs_fifo1_reg_word63_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word63_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word63_written;
 reg [31:0] card_core0_regs_fifo1_reg_word63_chain_out_data;
 wire card_core0_regs_fifo1_reg_word63_chain_out_clamped;
-reg [19:0] card_core0_regs_fifo1_reg_word64_shown;
+wire [27:0] card_core0_regs_fifo1_reg_word64_shown;
 wire card_core0_regs_fifo1_reg_word64_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word64_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word64_chain_out_data;
 wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word65_shown;
+wire [1:0] card_core0_regs_fifo1_reg_word65_honoured;
+wire card_core0_regs_fifo1_reg_word65_out_of_range;
+reg card_core0_regs_fifo1_reg_word65_clamped;
 wire card_core0_regs_fifo1_reg_word65_mine;
+wire card_core0_regs_fifo1_reg_word65_mine_write;
+wire card_core0_regs_fifo1_reg_word65_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
+reg [1:0] card_core0_regs_fifo1_reg_word65_written;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
 wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
-wire [6:0] card_core0_regs_fifo1_reg_word66_honoured;
-wire card_core0_regs_fifo1_reg_word66_out_of_range;
-reg [6:0] card_core0_regs_fifo1_reg_word66_shown;
-reg card_core0_regs_fifo1_reg_word66_clamped;
+reg [19:0] card_core0_regs_fifo1_reg_word66_shown;
 wire card_core0_regs_fifo1_reg_word66_mine;
-wire card_core0_regs_fifo1_reg_word66_mine_write;
-wire card_core0_regs_fifo1_reg_word66_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word66_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word66_written;
 reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
 wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
-reg [3:0] card_core0_regs_fifo1_reg_word67_honoured;
-reg card_core0_regs_fifo1_reg_word67_out_of_range;
-reg [3:0] card_core0_regs_fifo1_reg_word67_shown;
-reg card_core0_regs_fifo1_reg_word67_clamped;
+reg [15:0] card_core0_regs_fifo1_reg_word67_shown;
 wire card_core0_regs_fifo1_reg_word67_mine;
-wire card_core0_regs_fifo1_reg_word67_mine_write;
-wire card_core0_regs_fifo1_reg_word67_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word67_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word67_written;
 reg [31:0] card_core0_regs_fifo1_reg_word67_chain_out_data;
 wire card_core0_regs_fifo1_reg_word67_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word68_honoured;
-reg card_core0_regs_fifo1_reg_word68_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word68_shown;
+wire [6:0] card_core0_regs_fifo1_reg_word68_honoured;
+wire card_core0_regs_fifo1_reg_word68_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word68_shown;
 reg card_core0_regs_fifo1_reg_word68_clamped;
 wire card_core0_regs_fifo1_reg_word68_mine;
 wire card_core0_regs_fifo1_reg_word68_mine_write;
 wire card_core0_regs_fifo1_reg_word68_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word68_written;
+reg [6:0] card_core0_regs_fifo1_reg_word68_written;
 reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
 wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
-reg [23:0] card_core0_regs_fifo1_reg_word69_honoured;
+reg [3:0] card_core0_regs_fifo1_reg_word69_honoured;
 reg card_core0_regs_fifo1_reg_word69_out_of_range;
+reg [3:0] card_core0_regs_fifo1_reg_word69_shown;
 reg card_core0_regs_fifo1_reg_word69_clamped;
 wire card_core0_regs_fifo1_reg_word69_mine;
 wire card_core0_regs_fifo1_reg_word69_mine_write;
+wire card_core0_regs_fifo1_reg_word69_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word69_written;
+reg [31:0] card_core0_regs_fifo1_reg_word69_written;
 reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
 wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word69__store48_word_strobe;
-reg [23:0] card_core0_regs_fifo1_reg_word69__store48_word_value;
-wire [1:0] card_core0_regs_fifo1_reg_word70_honoured;
-wire card_core0_regs_fifo1_reg_word70_out_of_range;
-reg [1:0] card_core0_regs_fifo1_reg_word70_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
+reg card_core0_regs_fifo1_reg_word70_out_of_range;
+reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
 reg card_core0_regs_fifo1_reg_word70_clamped;
 wire card_core0_regs_fifo1_reg_word70_mine;
 wire card_core0_regs_fifo1_reg_word70_mine_write;
+wire card_core0_regs_fifo1_reg_word70_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word70_written;
+reg [31:0] card_core0_regs_fifo1_reg_word70_written;
 reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
 wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
-reg card_core0_regs_fifo1_reg_word70__store49_word_strobe;
-reg [1:0] card_core0_regs_fifo1_reg_word70__store49_word_value;
-reg [5:0] card_core0_regs_fifo1_reg_word71_shown;
+reg [23:0] card_core0_regs_fifo1_reg_word71_honoured;
+reg card_core0_regs_fifo1_reg_word71_out_of_range;
+reg card_core0_regs_fifo1_reg_word71_clamped;
 wire card_core0_regs_fifo1_reg_word71_mine;
+wire card_core0_regs_fifo1_reg_word71_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
+wire [31:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word72_honoured;
-reg card_core0_regs_fifo1_reg_word72_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word72_shown;
+reg card_core0_regs_fifo1_reg_word71__store48_word_strobe;
+reg [23:0] card_core0_regs_fifo1_reg_word71__store48_word_value;
+wire [6:0] card_core0_regs_fifo1_reg_word72_honoured;
+wire card_core0_regs_fifo1_reg_word72_out_of_range;
+reg [6:0] card_core0_regs_fifo1_reg_word72_shown;
 reg card_core0_regs_fifo1_reg_word72_clamped;
 wire card_core0_regs_fifo1_reg_word72_mine;
 wire card_core0_regs_fifo1_reg_word72_mine_write;
-wire card_core0_regs_fifo1_reg_word72_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word72_written;
+wire [6:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word73_honoured;
-reg card_core0_regs_fifo1_reg_word73_out_of_range;
-reg [15:0] card_core0_regs_fifo1_reg_word73_shown;
-reg card_core0_regs_fifo1_reg_word73_clamped;
+reg card_core0_regs_fifo1_reg_word72__store49_word_strobe;
+reg [6:0] card_core0_regs_fifo1_reg_word72__store49_word_value;
+reg [5:0] card_core0_regs_fifo1_reg_word73_shown;
 wire card_core0_regs_fifo1_reg_word73_mine;
-wire card_core0_regs_fifo1_reg_word73_mine_write;
-wire card_core0_regs_fifo1_reg_word73_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word73_written;
 reg [31:0] card_core0_regs_fifo1_reg_word73_chain_out_data;
 wire card_core0_regs_fifo1_reg_word73_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word74_honoured;
@@ -678,9 +655,9 @@ wire [31:0] card_core0_regs_fifo1_reg_word74_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word74_written;
 reg [31:0] card_core0_regs_fifo1_reg_word74_chain_out_data;
 wire card_core0_regs_fifo1_reg_word74_chain_out_clamped;
-reg [22:0] card_core0_regs_fifo1_reg_word75_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word75_honoured;
 reg card_core0_regs_fifo1_reg_word75_out_of_range;
-reg [22:0] card_core0_regs_fifo1_reg_word75_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word75_shown;
 reg card_core0_regs_fifo1_reg_word75_clamped;
 wire card_core0_regs_fifo1_reg_word75_mine;
 wire card_core0_regs_fifo1_reg_word75_mine_write;
@@ -689,25 +666,57 @@ wire [31:0] card_core0_regs_fifo1_reg_word75_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word75_written;
 reg [31:0] card_core0_regs_fifo1_reg_word75_chain_out_data;
 wire card_core0_regs_fifo1_reg_word75_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word76_honoured;
+reg [15:0] card_core0_regs_fifo1_reg_word76_honoured;
 reg card_core0_regs_fifo1_reg_word76_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word76_shown;
+reg [15:0] card_core0_regs_fifo1_reg_word76_shown;
 reg card_core0_regs_fifo1_reg_word76_clamped;
 wire card_core0_regs_fifo1_reg_word76_mine;
 wire card_core0_regs_fifo1_reg_word76_mine_write;
+wire card_core0_regs_fifo1_reg_word76_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word76_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word76_written;
 reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
 wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
-reg [1:0] card_core0_regs_fifo1_reg_word77_honoured;
+reg [22:0] card_core0_regs_fifo1_reg_word77_honoured;
 reg card_core0_regs_fifo1_reg_word77_out_of_range;
+reg [22:0] card_core0_regs_fifo1_reg_word77_shown;
 reg card_core0_regs_fifo1_reg_word77_clamped;
 wire card_core0_regs_fifo1_reg_word77_mine;
 wire card_core0_regs_fifo1_reg_word77_mine_write;
 wire card_core0_regs_fifo1_reg_word77_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word77_written;
+reg [31:0] card_core0_regs_fifo1_reg_word77_chain_out_data;
 wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
+reg [7:0] card_core0_regs_fifo1_reg_word78_honoured;
+reg card_core0_regs_fifo1_reg_word78_out_of_range;
+reg [7:0] card_core0_regs_fifo1_reg_word78_shown;
+reg card_core0_regs_fifo1_reg_word78_clamped;
+wire card_core0_regs_fifo1_reg_word78_mine;
+wire card_core0_regs_fifo1_reg_word78_mine_write;
+wire [31:0] card_core0_regs_fifo1_reg_word78_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word78_written;
+reg [31:0] card_core0_regs_fifo1_reg_word78_chain_out_data;
+wire card_core0_regs_fifo1_reg_word78_chain_out_clamped;
+reg [1:0] card_core0_regs_fifo1_reg_word79_honoured;
+reg card_core0_regs_fifo1_reg_word79_out_of_range;
+reg card_core0_regs_fifo1_reg_word79_clamped;
+wire card_core0_regs_fifo1_reg_word79_mine;
+wire card_core0_regs_fifo1_reg_word79_mine_write;
+wire card_core0_regs_fifo1_reg_word79_set_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word79_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word79_written;
+reg [31:0] card_core0_regs_fifo1_reg_word79_chain_out_data;
+wire card_core0_regs_fifo1_reg_word79_chain_out_clamped;
+reg [6:0] card_core0_regs_fifo1_reg_word80_shown;
+wire card_core0_regs_fifo1_reg_word80_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word80_shown_wide;
+reg [31:0] card_core0_regs_fifo1_reg_word80_chain_out_data;
+wire card_core0_regs_fifo1_reg_word80_chain_out_clamped;
+reg [6:0] card_core0_regs_fifo1_reg_word81_shown;
+wire card_core0_regs_fifo1_reg_word81_mine;
+wire [31:0] card_core0_regs_fifo1_reg_word81_shown_wide;
+wire card_core0_regs_fifo1_reg_word81_chain_out_clamped;
 wire card_core0_regs_fifo1_sequencer1_arriving_coord_fits;
 wire card_core0_regs_fifo1_sequencer1_arriving_count_fits;
 reg card_core0_regs_fifo1_sequencer1_bad_axes;
@@ -904,8 +913,13 @@ wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_step;
 wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_dir;
 wire card_core0_regs_fifo1_machine_guard1_grant_y_granted_step;
 wire card_core0_regs_fifo1_machine_guard1_grant_y_granted_dir;
+wire card_core0_regs_fifo1_machine_guard1_limit_x_hit_pos;
+wire card_core0_regs_fifo1_machine_guard1_limit_x_hit_neg;
+wire card_core0_regs_fifo1_machine_guard1_limit_y_hit_pos;
+wire card_core0_regs_fifo1_machine_guard1_limit_y_hit_neg;
 reg [23:0] card_core0_regs_fifo1_homing1_addend;
-reg card_core0_regs_fifo1_homing1_axis;
+reg [2:0] card_core0_regs_fifo1_homing1_asked;
+reg [2:0] card_core0_regs_fifo1_homing1_axis;
 reg card_core0_regs_fifo1_homing1_done;
 reg card_core0_regs_fifo1_homing1_finished;
 reg card_core0_regs_fifo1_homing1_gave_up;
@@ -920,8 +934,11 @@ reg card_core0_regs_fifo1_homing1_refused;
 reg card_core0_regs_fifo1_homing1_seek_next;
 reg card_core0_regs_fifo1_homing1_seeking;
 wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
+wire [0:0] card_core0_regs_fifo1_homing1_slot;
 reg [2:0] card_core0_regs_fifo1_homing1_state;
 reg card_core0_regs_fifo1_homing1_switch;
+reg card_core0_regs_fifo1_homing1_valid;
+wire [1:0] card_core0_regs_fifo1_homing1_port_home;
 reg card_core0_regs_fifo1_homing1_port_load;
 reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
@@ -1113,33 +1130,33 @@ reg [0:0] card_core0_dda_axes0__plane_queue0_v_next;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037442;
-assign card_core0_regs_fifo1_reg_word39_chain_in_data = 32'd0;
-assign card_core0_regs_fifo1_reg_word39_chain_in_clamped = 1'd0;
-assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word40_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word41_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word41_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word41_shown = 32'd3719037443;
+assign card_core0_regs_fifo1_reg_word41_chain_in_data = 32'd0;
+assign card_core0_regs_fifo1_reg_word41_chain_in_clamped = 1'd0;
+assign card_core0_regs_fifo1_reg_word42_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word42_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word43_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word43_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word43_shown = 4'd0;
+assign card_core0_regs_fifo1_reg_word45_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word45_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word55_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word55_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word60_shown = 32'd33333333;
-assign card_core0_regs_fifo1_reg_word61_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word62_shown = 28'd786968;
-assign card_core0_regs_fifo1_reg_word63_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word63_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word66_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word66_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word67_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word47_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word57_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word57_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word62_shown = 32'd33333333;
+assign card_core0_regs_fifo1_reg_word63_shown = 16'd512;
+assign card_core0_regs_fifo1_reg_word64_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word65_out_of_range = 1'd0;
+assign card_core0_regs_fifo1_reg_word65_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word68_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word68_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word70_out_of_range = 1'd0;
-assign card_core0_regs_fifo1_reg_word72_set_mine = 1'd0;
-assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word69_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word70_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word72_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word76_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
+assign card_core0_regs_fifo1_reg_word79_set_mine = 1'd0;
 assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
@@ -1169,6 +1186,12 @@ assign card_core0_regs_fifo1_input_filter1_inputs_pins[3] = pins_limit_pos_y;
 assign card_core0_regs_fifo1_input_filter1_inputs_pins[2] = pins_limit_neg_x;
 assign card_core0_regs_fifo1_input_filter1_inputs_pins[1] = pins_limit_pos_x;
 assign card_core0_regs_fifo1_input_filter1_inputs_pins[0] = pins_estop;
+assign card_core0_regs_fifo1_machine_guard1_hits[3] = card_core0_regs_fifo1_machine_guard1_limit_y_hit_neg;
+assign card_core0_regs_fifo1_machine_guard1_hits[2] = card_core0_regs_fifo1_machine_guard1_limit_y_hit_pos;
+assign card_core0_regs_fifo1_machine_guard1_hits[1] = card_core0_regs_fifo1_machine_guard1_limit_x_hit_neg;
+assign card_core0_regs_fifo1_machine_guard1_hits[0] = card_core0_regs_fifo1_machine_guard1_limit_x_hit_pos;
+assign card_core0_regs_fifo1_homing1_port_home[1] = card_core0_regs_fifo1_conditioning_active[6];
+assign card_core0_regs_fifo1_homing1_port_home[0] = card_core0_regs_fifo1_conditioning_active[5];
 
 
 always @(posedge clock, negedge reset) begin: pci_slave1_pci_boundary1_input_register
@@ -2474,136 +2497,29 @@ assign pci_slave1_pci_control1_control_case0_0_target_room = card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word39_mine = (pci_slave1_pci_requests1_local_addr == 0);
+assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 0);
 
 
-always @(card_core0_regs_fifo1_reg_word39_mine, card_core0_regs_fifo1_reg_word39_shown_wide, card_core0_regs_fifo1_reg_word39_chain_in_data) begin: card_core0_regs_fifo1_reg_word39_read_chain
-    if (card_core0_regs_fifo1_reg_word39_mine) begin
-        card_core0_regs_fifo1_reg_word39_chain_out_data = (card_core0_regs_fifo1_reg_word39_chain_in_data | card_core0_regs_fifo1_reg_word39_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word39_chain_out_data = card_core0_regs_fifo1_reg_word39_chain_in_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word39_shown_wide = card_core0_regs_fifo1_reg_word39_shown;
-
-
-
-assign card_core0_regs_fifo1_reg_word39_chain_out_clamped = card_core0_regs_fifo1_reg_word39_chain_in_clamped;
-
-
-
-assign card_core0_regs_fifo1_reg_word40_mine = (pci_slave1_pci_requests1_local_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word40_mine, card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word39_chain_out_data) begin: card_core0_regs_fifo1_reg_word40_read_chain
-    if (card_core0_regs_fifo1_reg_word40_mine) begin
-        card_core0_regs_fifo1_reg_word40_chain_out_data = (card_core0_regs_fifo1_reg_word39_chain_out_data | card_core0_regs_fifo1_reg_word40_shown_wide);
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word40_chain_out_data = card_core0_regs_fifo1_reg_word39_chain_out_data;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word40_shown_wide = {30'h0, card_core0_regs_fifo1_control};
-
-
-
-assign card_core0_regs_fifo1_reg_word40_mine_write = (card_core0_regs_fifo1_written_addr == 4);
-
-
-always @(card_core0_regs_fifo1_reg_word40_shown_wide, card_core0_regs_fifo1_reg_word40_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word40_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word40_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word40_written = ((card_core0_regs_fifo1_reg_word40_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word40_honoured = card_core0_regs_fifo1_reg_word40_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word40_chain_out_clamped = (card_core0_regs_fifo1_reg_word39_chain_out_clamped || card_core0_regs_fifo1_reg_word40_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word40__store28_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_control <= 0;
-        card_core0_regs_fifo1_reg_word40_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word40_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word40_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word40_mine_write))) begin
-            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word40_honoured;
-            card_core0_regs_fifo1_reg_word40_clamped <= card_core0_regs_fifo1_reg_word40_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word41_mine = (pci_slave1_pci_requests1_local_addr == 8);
-
-
-always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word40_chain_out_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
+always @(card_core0_regs_fifo1_reg_word41_mine, card_core0_regs_fifo1_reg_word41_shown_wide, card_core0_regs_fifo1_reg_word41_chain_in_data) begin: card_core0_regs_fifo1_reg_word41_read_chain
     if (card_core0_regs_fifo1_reg_word41_mine) begin
-        card_core0_regs_fifo1_reg_word41_chain_out_data = (card_core0_regs_fifo1_reg_word40_chain_out_data | card_core0_regs_fifo1_reg_word41_shown_wide);
+        card_core0_regs_fifo1_reg_word41_chain_out_data = (card_core0_regs_fifo1_reg_word41_chain_in_data | card_core0_regs_fifo1_reg_word41_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_reg_word41_chain_out_data = card_core0_regs_fifo1_reg_word40_chain_out_data;
+        card_core0_regs_fifo1_reg_word41_chain_out_data = card_core0_regs_fifo1_reg_word41_chain_in_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word41_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word41_shown};
+assign card_core0_regs_fifo1_reg_word41_shown_wide = card_core0_regs_fifo1_reg_word41_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word41_mine_write = (card_core0_regs_fifo1_written_addr == 8);
+assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = card_core0_regs_fifo1_reg_word41_chain_in_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word41_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word41_honoured = card_core0_regs_fifo1_reg_word41_written[4-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word41_chain_out_clamped = (card_core0_regs_fifo1_reg_word40_chain_out_clamped || card_core0_regs_fifo1_reg_word41_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word41__store29_pulse_on_write
-    if (reset == 0) begin
-        card_core0_regs_fifo1_command_strobe <= 0;
-        card_core0_regs_fifo1_command <= 0;
-        card_core0_regs_fifo1_reg_word41_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_command_strobe <= 1'b0;
-        card_core0_regs_fifo1_reg_word41_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word41_mine_write)) begin
-            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word41_honoured;
-            card_core0_regs_fifo1_command_strobe <= 1'b1;
-            card_core0_regs_fifo1_reg_word41_clamped <= card_core0_regs_fifo1_reg_word41_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 12);
+assign card_core0_regs_fifo1_reg_word42_mine = (pci_slave1_pci_requests1_local_addr == 4);
 
 
 always @(card_core0_regs_fifo1_reg_word42_mine, card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word41_chain_out_data) begin: card_core0_regs_fifo1_reg_word42_read_chain
@@ -2617,15 +2533,48 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word42_shown_wide = card_core0_regs_fifo1_reg_word42_shown;
+assign card_core0_regs_fifo1_reg_word42_shown_wide = {30'h0, card_core0_regs_fifo1_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = card_core0_regs_fifo1_reg_word41_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 4);
+
+
+always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word42_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word42_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 16);
+assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word42_chain_out_clamped = (card_core0_regs_fifo1_reg_word41_chain_out_clamped || card_core0_regs_fifo1_reg_word42_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word42__store28_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_control <= 0;
+        card_core0_regs_fifo1_reg_word42_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word42_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word42_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word42_mine_write))) begin
+            card_core0_regs_fifo1_control <= card_core0_regs_fifo1_reg_word42_honoured;
+            card_core0_regs_fifo1_reg_word42_clamped <= card_core0_regs_fifo1_reg_word42_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word43_mine = (pci_slave1_pci_requests1_local_addr == 8);
 
 
 always @(card_core0_regs_fifo1_reg_word43_mine, card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word42_chain_out_data) begin: card_core0_regs_fifo1_reg_word43_read_chain
@@ -2639,40 +2588,37 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word43_shown};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 16);
-
-
-always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word43_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_written_addr == 8);
 
 
 
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word43_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[4-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word43_chain_out_clamped = (card_core0_regs_fifo1_reg_word42_chain_out_clamped || card_core0_regs_fifo1_reg_word43_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store30_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word43__store29_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word43_shown <= 0;
+        card_core0_regs_fifo1_command_strobe <= 0;
+        card_core0_regs_fifo1_command <= 0;
         card_core0_regs_fifo1_reg_word43_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_command_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word43_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write))) begin
-            card_core0_regs_fifo1_reg_word43_shown <= card_core0_regs_fifo1_reg_word43_honoured;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word43_mine_write)) begin
+            card_core0_regs_fifo1_command <= card_core0_regs_fifo1_reg_word43_honoured;
+            card_core0_regs_fifo1_command_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word43_clamped <= card_core0_regs_fifo1_reg_word43_out_of_range;
         end
     end
@@ -2680,7 +2626,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 20);
+assign card_core0_regs_fifo1_reg_word44_mine = (pci_slave1_pci_requests1_local_addr == 12);
 
 
 always @(card_core0_regs_fifo1_reg_word44_mine, card_core0_regs_fifo1_reg_word44_shown_wide, card_core0_regs_fifo1_reg_word43_chain_out_data) begin: card_core0_regs_fifo1_reg_word44_read_chain
@@ -2694,42 +2640,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word44_shown};
-
-
-
-assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_written_addr == 20);
-
-
-
-assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
-
-
-
-assign card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word44_shown_wide = card_core0_regs_fifo1_reg_word44_shown;
 
 
 
 assign card_core0_regs_fifo1_reg_word44_chain_out_clamped = card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word44__store31_clear_on_one
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word44_shown <= 0;
-    end
-    else begin
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word44_mine_write)) begin
-            card_core0_regs_fifo1_reg_word44_shown <= ((card_core0_regs_fifo1_reg_word44_shown & (~card_core0_regs_fifo1_reg_word44_honoured)) | card_core0_regs_fifo1_reg_word44__store31_word_hw);
-        end
-        else begin
-            card_core0_regs_fifo1_reg_word44_shown <= (card_core0_regs_fifo1_reg_word44_shown | card_core0_regs_fifo1_reg_word44__store31_word_hw);
-        end
-    end
-end
 
-
-
-assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 24);
+assign card_core0_regs_fifo1_reg_word45_mine = (pci_slave1_pci_requests1_local_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word45_mine, card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word44_chain_out_data) begin: card_core0_regs_fifo1_reg_word45_read_chain
@@ -2743,40 +2662,32 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word45_shown};
+assign card_core0_regs_fifo1_reg_word45_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word45_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
 always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word45_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
     if ((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[32-1:0];
+        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word45_written) begin: card_core0_regs_fifo1_reg_word45__limit32_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word45_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word45_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word45_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[16-1:0];
-        card_core0_regs_fifo1_reg_word45_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[8-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word45_chain_out_clamped = (card_core0_regs_fifo1_reg_word44_chain_out_clamped || card_core0_regs_fifo1_reg_word45_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word45__store32_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word45__store30_hold_rw
     if (reset == 0) begin
         card_core0_regs_fifo1_reg_word45_shown <= 0;
         card_core0_regs_fifo1_reg_word45_clamped <= 0;
@@ -2792,7 +2703,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 28);
+assign card_core0_regs_fifo1_reg_word46_mine = (pci_slave1_pci_requests1_local_addr == 20);
 
 
 always @(card_core0_regs_fifo1_reg_word46_mine, card_core0_regs_fifo1_reg_word46_shown_wide, card_core0_regs_fifo1_reg_word45_chain_out_data) begin: card_core0_regs_fifo1_reg_word46_read_chain
@@ -2806,15 +2717,42 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word46_shown};
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word46_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_written_addr == 20);
+
+
+
+assign card_core0_regs_fifo1_reg_word46_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
+
+
+
+assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[8-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word46_chain_out_clamped = card_core0_regs_fifo1_reg_word45_chain_out_clamped;
 
 
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word46__store31_clear_on_one
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word46_shown <= 0;
+    end
+    else begin
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word46_mine_write)) begin
+            card_core0_regs_fifo1_reg_word46_shown <= ((card_core0_regs_fifo1_reg_word46_shown & (~card_core0_regs_fifo1_reg_word46_honoured)) | card_core0_regs_fifo1_reg_word46__store31_word_hw);
+        end
+        else begin
+            card_core0_regs_fifo1_reg_word46_shown <= (card_core0_regs_fifo1_reg_word46_shown | card_core0_regs_fifo1_reg_word46__store31_word_hw);
+        end
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word47_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256));
+
+
+assign card_core0_regs_fifo1_reg_word47_mine = (pci_slave1_pci_requests1_local_addr == 24);
 
 
 always @(card_core0_regs_fifo1_reg_word47_mine, card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word46_chain_out_data) begin: card_core0_regs_fifo1_reg_word47_read_chain
@@ -2828,15 +2766,56 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown_wide = card_core0_regs_fifo1_reg_word47_shown;
+assign card_core0_regs_fifo1_reg_word47_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word47_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = card_core0_regs_fifo1_reg_word46_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 24);
+
+
+always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word47_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit32_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word47_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word47_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[16-1:0];
+        card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word48_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (pci_slave1_pci_requests1_local_addr == 320));
+assign card_core0_regs_fifo1_reg_word47_chain_out_clamped = (card_core0_regs_fifo1_reg_word46_chain_out_clamped || card_core0_regs_fifo1_reg_word47_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word47__store32_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word47_shown <= 0;
+        card_core0_regs_fifo1_reg_word47_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word47_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word47_mine_write))) begin
+            card_core0_regs_fifo1_reg_word47_shown <= card_core0_regs_fifo1_reg_word47_honoured;
+            card_core0_regs_fifo1_reg_word47_clamped <= card_core0_regs_fifo1_reg_word47_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word48_mine = (pci_slave1_pci_requests1_local_addr == 28);
 
 
 always @(card_core0_regs_fifo1_reg_word48_mine, card_core0_regs_fifo1_reg_word48_shown_wide, card_core0_regs_fifo1_reg_word47_chain_out_data) begin: card_core0_regs_fifo1_reg_word48_read_chain
@@ -2850,7 +2829,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word48_shown_wide = card_core0_regs_fifo1_reg_word48_shown;
+assign card_core0_regs_fifo1_reg_word48_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word48_shown};
 
 
 
@@ -2858,7 +2837,7 @@ assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine = (pci_slave1_pci_requests1_local_addr == 40);
+assign card_core0_regs_fifo1_reg_word49_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256));
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -2872,59 +2851,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word49_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word49_shown};
+assign card_core0_regs_fifo1_reg_word49_shown_wide = card_core0_regs_fifo1_reg_word49_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine_write = (card_core0_regs_fifo1_written_addr == 40);
-
-
-always @(card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word49_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word49_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word49_written = ((card_core0_regs_fifo1_reg_word49_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word49_written) begin: card_core0_regs_fifo1_reg_word49__limit33_clamp_unsigned
-    card_core0_regs_fifo1_reg_word49_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word49_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word49_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word49_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word49_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word49_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word49_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word49_honoured = card_core0_regs_fifo1_reg_word49_written[16-1:0];
-        card_core0_regs_fifo1_reg_word49_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = card_core0_regs_fifo1_reg_word48_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = (card_core0_regs_fifo1_reg_word48_chain_out_clamped || card_core0_regs_fifo1_reg_word49_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word49__store33_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word49_shown <= 4096;
-        card_core0_regs_fifo1_reg_word49_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word49_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word49_mine_write))) begin
-            card_core0_regs_fifo1_reg_word49_shown <= card_core0_regs_fifo1_reg_word49_honoured;
-            card_core0_regs_fifo1_reg_word49_clamped <= card_core0_regs_fifo1_reg_word49_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word50_mine = (pci_slave1_pci_requests1_local_addr == 44);
+assign card_core0_regs_fifo1_reg_word50_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (pci_slave1_pci_requests1_local_addr == 320));
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -2938,59 +2873,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word50_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word50_shown};
+assign card_core0_regs_fifo1_reg_word50_shown_wide = card_core0_regs_fifo1_reg_word50_shown;
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine_write = (card_core0_regs_fifo1_written_addr == 44);
-
-
-always @(card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word50_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word50_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word50_written = ((card_core0_regs_fifo1_reg_word50_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word50_written) begin: card_core0_regs_fifo1_reg_word50__limit34_clamp_unsigned
-    card_core0_regs_fifo1_reg_word50_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word50_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word50_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word50_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word50_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word50_written[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word50_honoured = 32768;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word50_honoured = card_core0_regs_fifo1_reg_word50_written[16-1:0];
-        card_core0_regs_fifo1_reg_word50_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word50_chain_out_clamped = card_core0_regs_fifo1_reg_word49_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word50_chain_out_clamped = (card_core0_regs_fifo1_reg_word49_chain_out_clamped || card_core0_regs_fifo1_reg_word50_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word50__store34_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word50_shown <= 4096;
-        card_core0_regs_fifo1_reg_word50_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word50_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word50_mine_write))) begin
-            card_core0_regs_fifo1_reg_word50_shown <= card_core0_regs_fifo1_reg_word50_honoured;
-            card_core0_regs_fifo1_reg_word50_clamped <= card_core0_regs_fifo1_reg_word50_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 48);
+assign card_core0_regs_fifo1_reg_word51_mine = (pci_slave1_pci_requests1_local_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word51_mine, card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_reg_word50_chain_out_data) begin: card_core0_regs_fifo1_reg_word51_read_chain
@@ -3004,15 +2895,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
+assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word51_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 48);
+assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
 always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3021,10 +2912,13 @@ always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit35_clamp_above_power_of_two
+always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit33_clamp_unsigned
     card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word51_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 65535;
+    if (((card_core0_regs_fifo1_reg_word51_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word51_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 1;
+    end
+    else if (((card_core0_regs_fifo1_reg_word51_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word51_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 32768;
     end
     else begin
         card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[16-1:0];
@@ -3037,15 +2931,15 @@ end
 assign card_core0_regs_fifo1_reg_word51_chain_out_clamped = (card_core0_regs_fifo1_reg_word50_chain_out_clamped || card_core0_regs_fifo1_reg_word51_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store35_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word51__store33_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_ramp_step <= 0;
+        card_core0_regs_fifo1_reg_word51_shown <= 4096;
         card_core0_regs_fifo1_reg_word51_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word51_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
-            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word51_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word51_mine_write))) begin
+            card_core0_regs_fifo1_reg_word51_shown <= card_core0_regs_fifo1_reg_word51_honoured;
             card_core0_regs_fifo1_reg_word51_clamped <= card_core0_regs_fifo1_reg_word51_out_of_range;
         end
     end
@@ -3053,7 +2947,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 52);
+assign card_core0_regs_fifo1_reg_word52_mine = (pci_slave1_pci_requests1_local_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word52_mine, card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_reg_word51_chain_out_data) begin: card_core0_regs_fifo1_reg_word52_read_chain
@@ -3067,15 +2961,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word52_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word52_shown};
+assign card_core0_regs_fifo1_reg_word52_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word52_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 52);
+assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
 always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
         card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3084,16 +2978,16 @@ always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit36_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit34_clamp_unsigned
     card_core0_regs_fifo1_reg_word52_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word52_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word52_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word52_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word52_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word52_honoured = 255;
+    else if (((card_core0_regs_fifo1_reg_word52_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word52_written[16-1:0] > 32768))) begin
+        card_core0_regs_fifo1_reg_word52_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written[8-1:0];
+        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written[16-1:0];
         card_core0_regs_fifo1_reg_word52_out_of_range = 1'b0;
     end
 end
@@ -3103,14 +2997,14 @@ end
 assign card_core0_regs_fifo1_reg_word52_chain_out_clamped = (card_core0_regs_fifo1_reg_word51_chain_out_clamped || card_core0_regs_fifo1_reg_word52_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word52__store36_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word52__store34_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word52_shown <= 1;
+        card_core0_regs_fifo1_reg_word52_shown <= 4096;
         card_core0_regs_fifo1_reg_word52_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word52_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word52_mine_write))) begin
             card_core0_regs_fifo1_reg_word52_shown <= card_core0_regs_fifo1_reg_word52_honoured;
             card_core0_regs_fifo1_reg_word52_clamped <= card_core0_regs_fifo1_reg_word52_out_of_range;
         end
@@ -3119,7 +3013,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 56);
+assign card_core0_regs_fifo1_reg_word53_mine = (pci_slave1_pci_requests1_local_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word53_mine, card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_reg_word52_chain_out_data) begin: card_core0_regs_fifo1_reg_word53_read_chain
@@ -3133,15 +3027,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word53_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word53_shown};
+assign card_core0_regs_fifo1_reg_word53_shown_wide = {16'h0, card_core0_regs_fifo1_ramp_step};
 
 
 
-assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 56);
+assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
 always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
         card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3150,16 +3044,13 @@ always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit37_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit35_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word53_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word53_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word53_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word53_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word53_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word53_honoured = 255;
+    if ((card_core0_regs_fifo1_reg_word53_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[8-1:0];
+        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[16-1:0];
         card_core0_regs_fifo1_reg_word53_out_of_range = 1'b0;
     end
 end
@@ -3169,15 +3060,15 @@ end
 assign card_core0_regs_fifo1_reg_word53_chain_out_clamped = (card_core0_regs_fifo1_reg_word52_chain_out_clamped || card_core0_regs_fifo1_reg_word53_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word53__store37_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word53__store35_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word53_shown <= 1;
+        card_core0_regs_fifo1_ramp_step <= 0;
         card_core0_regs_fifo1_reg_word53_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word53_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
-            card_core0_regs_fifo1_reg_word53_shown <= card_core0_regs_fifo1_reg_word53_honoured;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word53_mine_write))) begin
+            card_core0_regs_fifo1_ramp_step <= card_core0_regs_fifo1_reg_word53_honoured;
             card_core0_regs_fifo1_reg_word53_clamped <= card_core0_regs_fifo1_reg_word53_out_of_range;
         end
     end
@@ -3185,7 +3076,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 60);
+assign card_core0_regs_fifo1_reg_word54_mine = (pci_slave1_pci_requests1_local_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word54_mine, card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_reg_word53_chain_out_data) begin: card_core0_regs_fifo1_reg_word54_read_chain
@@ -3203,11 +3094,11 @@ assign card_core0_regs_fifo1_reg_word54_shown_wide = {24'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 60);
+assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
 always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
         card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3216,7 +3107,7 @@ always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit38_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit36_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word54_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word54_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word54_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word54_honoured = 1;
@@ -3235,14 +3126,14 @@ end
 assign card_core0_regs_fifo1_reg_word54_chain_out_clamped = (card_core0_regs_fifo1_reg_word53_chain_out_clamped || card_core0_regs_fifo1_reg_word54_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word54__store38_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word54__store36_hold_rw
     if (reset == 0) begin
         card_core0_regs_fifo1_reg_word54_shown <= 1;
         card_core0_regs_fifo1_reg_word54_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word54_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word54_mine_write))) begin
             card_core0_regs_fifo1_reg_word54_shown <= card_core0_regs_fifo1_reg_word54_honoured;
             card_core0_regs_fifo1_reg_word54_clamped <= card_core0_regs_fifo1_reg_word54_out_of_range;
         end
@@ -3251,7 +3142,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 64);
+assign card_core0_regs_fifo1_reg_word55_mine = (pci_slave1_pci_requests1_local_addr == 56);
 
 
 always @(card_core0_regs_fifo1_reg_word55_mine, card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word54_chain_out_data) begin: card_core0_regs_fifo1_reg_word55_read_chain
@@ -3265,39 +3156,50 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word55_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word55_shown};
+assign card_core0_regs_fifo1_reg_word55_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word55_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 64);
+assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_reg_word55_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[6-1:0];
+always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[6-1:0] & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[6-1:0];
+always @(card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit37_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word55_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word55_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word55_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word55_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word55_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[8-1:0];
+        card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word55_chain_out_clamped = (card_core0_regs_fifo1_reg_word54_chain_out_clamped || card_core0_regs_fifo1_reg_word55_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store39_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word55__store37_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word55_shown <= 0;
+        card_core0_regs_fifo1_reg_word55_shown <= 1;
         card_core0_regs_fifo1_reg_word55_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word55_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word55_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word55_mine_write))) begin
             card_core0_regs_fifo1_reg_word55_shown <= card_core0_regs_fifo1_reg_word55_honoured;
             card_core0_regs_fifo1_reg_word55_clamped <= card_core0_regs_fifo1_reg_word55_out_of_range;
         end
@@ -3306,7 +3208,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (pci_slave1_pci_requests1_local_addr == 260));
+assign card_core0_regs_fifo1_reg_word56_mine = (pci_slave1_pci_requests1_local_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word56_mine, card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_reg_word55_chain_out_data) begin: card_core0_regs_fifo1_reg_word56_read_chain
@@ -3320,15 +3222,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word56_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word56_shown};
+assign card_core0_regs_fifo1_reg_word56_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word56_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word56_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
+assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
 always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
         card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -3337,16 +3239,16 @@ always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit40_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit38_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word56_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word56_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word56_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word56_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word56_honoured = 65535;
+    else if ((card_core0_regs_fifo1_reg_word56_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[16-1:0];
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[8-1:0];
         card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
     end
 end
@@ -3356,14 +3258,14 @@ end
 assign card_core0_regs_fifo1_reg_word56_chain_out_clamped = (card_core0_regs_fifo1_reg_word55_chain_out_clamped || card_core0_regs_fifo1_reg_word56_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store40_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word56__store38_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word56_shown <= 2;
+        card_core0_regs_fifo1_reg_word56_shown <= 1;
         card_core0_regs_fifo1_reg_word56_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word56_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write))) begin
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word56_mine_write))) begin
             card_core0_regs_fifo1_reg_word56_shown <= card_core0_regs_fifo1_reg_word56_honoured;
             card_core0_regs_fifo1_reg_word56_clamped <= card_core0_regs_fifo1_reg_word56_out_of_range;
         end
@@ -3372,7 +3274,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (pci_slave1_pci_requests1_local_addr == 324));
+assign card_core0_regs_fifo1_reg_word57_mine = (pci_slave1_pci_requests1_local_addr == 64);
 
 
 always @(card_core0_regs_fifo1_reg_word57_mine, card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word56_chain_out_data) begin: card_core0_regs_fifo1_reg_word57_read_chain
@@ -3386,50 +3288,39 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word57_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word57_shown};
+assign card_core0_regs_fifo1_reg_word57_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word57_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word57_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
+assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word57_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word57_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word57_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word57_written = card_core0_regs_fifo1_set_value[6-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown_wide[6-1:0] & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word57_written) begin: card_core0_regs_fifo1_reg_word57__limit41_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word57_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word57_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word57_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word57_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word57_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word57_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[16-1:0];
-        card_core0_regs_fifo1_reg_word57_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[6-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word57_chain_out_clamped = (card_core0_regs_fifo1_reg_word56_chain_out_clamped || card_core0_regs_fifo1_reg_word57_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store41_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word57__store39_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word57_shown <= 2;
+        card_core0_regs_fifo1_reg_word57_shown <= 0;
         card_core0_regs_fifo1_reg_word57_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word57_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word57_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word57_mine_write))) begin
             card_core0_regs_fifo1_reg_word57_shown <= card_core0_regs_fifo1_reg_word57_honoured;
             card_core0_regs_fifo1_reg_word57_clamped <= card_core0_regs_fifo1_reg_word57_out_of_range;
         end
@@ -3438,7 +3329,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (pci_slave1_pci_requests1_local_addr == 264));
+assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (pci_slave1_pci_requests1_local_addr == 260));
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3452,29 +3343,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word58_shown};
+assign card_core0_regs_fifo1_reg_word58_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word58_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_written_addr == 264));
+assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
 
 
-
-assign card_core0_regs_fifo1_reg_word58_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit42_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word58_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word58_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[24-1:0];
-        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word58_written[31]) begin
-        card_core0_regs_fifo1_reg_word58_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word58_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit40_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word58_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word58_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word58_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word58_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word58_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[16-1:0];
+        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
     end
 end
 
@@ -3483,18 +3379,15 @@ end
 assign card_core0_regs_fifo1_reg_word58_chain_out_clamped = (card_core0_regs_fifo1_reg_word57_chain_out_clamped || card_core0_regs_fifo1_reg_word58_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word58__store42_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word58__store40_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word58__store42_word_value <= 0;
+        card_core0_regs_fifo1_reg_word58_shown <= 2;
         card_core0_regs_fifo1_reg_word58_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word58_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word58_mine_write)) begin
-            card_core0_regs_fifo1_reg_word58__store42_word_value <= card_core0_regs_fifo1_reg_word58_honoured;
-            card_core0_regs_fifo1_reg_word58__store42_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word58_mine_write))) begin
+            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_reg_word58_honoured;
             card_core0_regs_fifo1_reg_word58_clamped <= card_core0_regs_fifo1_reg_word58_out_of_range;
         end
     end
@@ -3502,7 +3395,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (pci_slave1_pci_requests1_local_addr == 328));
+assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (pci_slave1_pci_requests1_local_addr == 324));
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3516,29 +3409,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word59_shown};
+assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word59_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_written_addr == 328));
+assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
 
 
-
-assign card_core0_regs_fifo1_reg_word59_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit43_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word59_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word59_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[24-1:0];
-        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
-    end
-    else if (card_core0_regs_fifo1_reg_word59_written[31]) begin
-        card_core0_regs_fifo1_reg_word59_honoured = 8388608;
-        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+always @(card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word59_honoured = 8388607;
-        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit41_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word59_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word59_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word59_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[16-1:0];
+        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
     end
 end
 
@@ -3547,18 +3445,15 @@ end
 assign card_core0_regs_fifo1_reg_word59_chain_out_clamped = (card_core0_regs_fifo1_reg_word58_chain_out_clamped || card_core0_regs_fifo1_reg_word59_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word59__store43_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word59__store41_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word59__store43_word_value <= 0;
+        card_core0_regs_fifo1_reg_word59_shown <= 2;
         card_core0_regs_fifo1_reg_word59_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word59_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word59_mine_write)) begin
-            card_core0_regs_fifo1_reg_word59__store43_word_value <= card_core0_regs_fifo1_reg_word59_honoured;
-            card_core0_regs_fifo1_reg_word59__store43_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word59_mine_write))) begin
+            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_reg_word59_honoured;
             card_core0_regs_fifo1_reg_word59_clamped <= card_core0_regs_fifo1_reg_word59_out_of_range;
         end
     end
@@ -3566,7 +3461,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = (pci_slave1_pci_requests1_local_addr == 84);
+assign card_core0_regs_fifo1_reg_word60_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (pci_slave1_pci_requests1_local_addr == 264));
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3580,15 +3475,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_shown_wide = card_core0_regs_fifo1_reg_word60_shown;
+assign card_core0_regs_fifo1_reg_word60_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word60_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = card_core0_regs_fifo1_reg_word59_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_written_addr == 264));
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = (pci_slave1_pci_requests1_local_addr == 88);
+assign card_core0_regs_fifo1_reg_word60_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit42_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word60_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word60_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written[24-1:0];
+        card_core0_regs_fifo1_reg_word60_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word60_written[31]) begin
+        card_core0_regs_fifo1_reg_word60_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word60_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_chain_out_clamped = (card_core0_regs_fifo1_reg_word59_chain_out_clamped || card_core0_regs_fifo1_reg_word60_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word60__store42_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word60__store42_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word60__store42_word_value <= 0;
+        card_core0_regs_fifo1_reg_word60_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word60__store42_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word60_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word60_mine_write)) begin
+            card_core0_regs_fifo1_reg_word60__store42_word_value <= card_core0_regs_fifo1_reg_word60_honoured;
+            card_core0_regs_fifo1_reg_word60__store42_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word60_clamped <= card_core0_regs_fifo1_reg_word60_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word61_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (pci_slave1_pci_requests1_local_addr == 328));
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -3602,15 +3539,57 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word61_shown};
+assign card_core0_regs_fifo1_reg_word61_shown_wide = {8'h0, card_core0_regs_fifo1_reg_word61_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = card_core0_regs_fifo1_reg_word60_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_written_addr == 328));
 
 
 
-assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 92);
+assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_reg_word61__limit43_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word61_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word61_written[32-1:(24 - 1)] == 511))) begin
+        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[24-1:0];
+        card_core0_regs_fifo1_reg_word61_out_of_range = 1'b0;
+    end
+    else if (card_core0_regs_fifo1_reg_word61_written[31]) begin
+        card_core0_regs_fifo1_reg_word61_honoured = 8388608;
+        card_core0_regs_fifo1_reg_word61_out_of_range = 1'b1;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word61_honoured = 8388607;
+        card_core0_regs_fifo1_reg_word61_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word61_chain_out_clamped = (card_core0_regs_fifo1_reg_word60_chain_out_clamped || card_core0_regs_fifo1_reg_word61_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word61__store43_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word61__store43_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word61__store43_word_value <= 0;
+        card_core0_regs_fifo1_reg_word61_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word61__store43_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word61_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word61_mine_write)) begin
+            card_core0_regs_fifo1_reg_word61__store43_word_value <= card_core0_regs_fifo1_reg_word61_honoured;
+            card_core0_regs_fifo1_reg_word61__store43_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word61_clamped <= card_core0_regs_fifo1_reg_word61_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word62_mine = (pci_slave1_pci_requests1_local_addr == 84);
 
 
 always @(card_core0_regs_fifo1_reg_word62_mine, card_core0_regs_fifo1_reg_word62_shown_wide, card_core0_regs_fifo1_reg_word61_chain_out_data) begin: card_core0_regs_fifo1_reg_word62_read_chain
@@ -3624,7 +3603,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word62_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word62_shown};
+assign card_core0_regs_fifo1_reg_word62_shown_wide = card_core0_regs_fifo1_reg_word62_shown;
 
 
 
@@ -3632,7 +3611,7 @@ assign card_core0_regs_fifo1_reg_word62_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 96);
+assign card_core0_regs_fifo1_reg_word63_mine = (pci_slave1_pci_requests1_local_addr == 88);
 
 
 always @(card_core0_regs_fifo1_reg_word63_mine, card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word62_chain_out_data) begin: card_core0_regs_fifo1_reg_word63_read_chain
@@ -3646,51 +3625,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word63_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
+assign card_core0_regs_fifo1_reg_word63_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word63_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word63_mine_write = (card_core0_regs_fifo1_written_addr == 96);
-
-
-always @(card_core0_regs_fifo1_reg_word63_shown_wide, card_core0_regs_fifo1_reg_word63_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word63_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word63_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word63_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word63_written = ((card_core0_regs_fifo1_reg_word63_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = card_core0_regs_fifo1_reg_word62_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word63_honoured = card_core0_regs_fifo1_reg_word63_written[2-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word63_chain_out_clamped = (card_core0_regs_fifo1_reg_word62_chain_out_clamped || card_core0_regs_fifo1_reg_word63_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word63__store44_hold_rw_cleared
-    if (reset == 0) begin
-        card_core0_regs_fifo1_machine_control <= 0;
-        card_core0_regs_fifo1_reg_word63_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word63_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word63_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word63_mine_write))) begin
-            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_reg_word63_honoured & (~(card_core0_regs_fifo1_drive_cleared & 1)));
-            card_core0_regs_fifo1_reg_word63_clamped <= card_core0_regs_fifo1_reg_word63_out_of_range;
-        end
-        else begin
-            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_machine_control & (~(card_core0_regs_fifo1_drive_cleared & 1)));
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 100);
+assign card_core0_regs_fifo1_reg_word64_mine = (pci_slave1_pci_requests1_local_addr == 92);
 
 
 always @(card_core0_regs_fifo1_reg_word64_mine, card_core0_regs_fifo1_reg_word64_shown_wide, card_core0_regs_fifo1_reg_word63_chain_out_data) begin: card_core0_regs_fifo1_reg_word64_read_chain
@@ -3704,7 +3647,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word64_shown};
+assign card_core0_regs_fifo1_reg_word64_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word64_shown};
 
 
 
@@ -3712,7 +3655,7 @@ assign card_core0_regs_fifo1_reg_word64_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 104);
+assign card_core0_regs_fifo1_reg_word65_mine = (pci_slave1_pci_requests1_local_addr == 96);
 
 
 always @(card_core0_regs_fifo1_reg_word65_mine, card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word64_chain_out_data) begin: card_core0_regs_fifo1_reg_word65_read_chain
@@ -3726,15 +3669,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word65_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word65_shown};
+assign card_core0_regs_fifo1_reg_word65_shown_wide = {30'h0, card_core0_regs_fifo1_machine_control};
 
 
 
-assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = card_core0_regs_fifo1_reg_word64_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_written_addr == 96);
+
+
+always @(card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word65_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word65_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word65_written = card_core0_regs_fifo1_set_value[2-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_reg_word65_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+    end
+end
 
 
 
-assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 108);
+assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written[2-1:0];
+
+
+
+assign card_core0_regs_fifo1_reg_word65_chain_out_clamped = (card_core0_regs_fifo1_reg_word64_chain_out_clamped || card_core0_regs_fifo1_reg_word65_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word65__store44_hold_rw_cleared
+    if (reset == 0) begin
+        card_core0_regs_fifo1_machine_control <= 0;
+        card_core0_regs_fifo1_reg_word65_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word65_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word65_mine_write))) begin
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_reg_word65_honoured & (~(card_core0_regs_fifo1_drive_cleared & 1)));
+            card_core0_regs_fifo1_reg_word65_clamped <= card_core0_regs_fifo1_reg_word65_out_of_range;
+        end
+        else begin
+            card_core0_regs_fifo1_machine_control <= (card_core0_regs_fifo1_machine_control & (~(card_core0_regs_fifo1_drive_cleared & 1)));
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word66_mine = (pci_slave1_pci_requests1_local_addr == 100);
 
 
 always @(card_core0_regs_fifo1_reg_word66_mine, card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word65_chain_out_data) begin: card_core0_regs_fifo1_reg_word66_read_chain
@@ -3748,48 +3727,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word66_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word66_shown};
+assign card_core0_regs_fifo1_reg_word66_shown_wide = {12'h0, card_core0_regs_fifo1_reg_word66_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word66_mine_write = (card_core0_regs_fifo1_written_addr == 108);
-
-
-always @(card_core0_regs_fifo1_reg_word66_shown_wide, card_core0_regs_fifo1_reg_word66_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word66_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word66_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word66_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word66_written = ((card_core0_regs_fifo1_reg_word66_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
+assign card_core0_regs_fifo1_reg_word66_chain_out_clamped = card_core0_regs_fifo1_reg_word65_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word66_honoured = card_core0_regs_fifo1_reg_word66_written[7-1:0];
-
-
-
-assign card_core0_regs_fifo1_reg_word66_chain_out_clamped = (card_core0_regs_fifo1_reg_word65_chain_out_clamped || card_core0_regs_fifo1_reg_word66_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word66__store45_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word66_shown <= 0;
-        card_core0_regs_fifo1_reg_word66_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word66_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word66_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word66_mine_write))) begin
-            card_core0_regs_fifo1_reg_word66_shown <= card_core0_regs_fifo1_reg_word66_honoured;
-            card_core0_regs_fifo1_reg_word66_clamped <= card_core0_regs_fifo1_reg_word66_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 112);
+assign card_core0_regs_fifo1_reg_word67_mine = (pci_slave1_pci_requests1_local_addr == 104);
 
 
 always @(card_core0_regs_fifo1_reg_word67_mine, card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word66_chain_out_data) begin: card_core0_regs_fifo1_reg_word67_read_chain
@@ -3803,59 +3749,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word67_shown};
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word67_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word67_mine_write = (card_core0_regs_fifo1_written_addr == 112);
-
-
-always @(card_core0_regs_fifo1_reg_word67_shown_wide, card_core0_regs_fifo1_reg_word67_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word67_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word67_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word67_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word67_written = ((card_core0_regs_fifo1_reg_word67_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word67_written) begin: card_core0_regs_fifo1_reg_word67__limit46_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word67_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word67_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word67_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word67_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word67_written[32-1:4] != 0)) begin
-        card_core0_regs_fifo1_reg_word67_honoured = 15;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word67_honoured = card_core0_regs_fifo1_reg_word67_written[4-1:0];
-        card_core0_regs_fifo1_reg_word67_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word67_chain_out_clamped = card_core0_regs_fifo1_reg_word66_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word67_chain_out_clamped = (card_core0_regs_fifo1_reg_word66_chain_out_clamped || card_core0_regs_fifo1_reg_word67_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word67__store46_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word67_shown <= 3;
-        card_core0_regs_fifo1_reg_word67_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word67_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word67_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word67_mine_write))) begin
-            card_core0_regs_fifo1_reg_word67_shown <= card_core0_regs_fifo1_reg_word67_honoured;
-            card_core0_regs_fifo1_reg_word67_clamped <= card_core0_regs_fifo1_reg_word67_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 116);
+assign card_core0_regs_fifo1_reg_word68_mine = (pci_slave1_pci_requests1_local_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word68_mine, card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word67_chain_out_data) begin: card_core0_regs_fifo1_reg_word68_read_chain
@@ -3869,45 +3771,34 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word68_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word68_shown};
+assign card_core0_regs_fifo1_reg_word68_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word68_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 116);
+assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 108);
 
 
 always @(card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word68_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word68_merge_bytes
     if ((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word68_written = card_core0_regs_fifo1_set_value[32-1:0];
+        card_core0_regs_fifo1_reg_word68_written = card_core0_regs_fifo1_set_value[7-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word68_written) begin: card_core0_regs_fifo1_reg_word68__limit47_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word68_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word68_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word68_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word68_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word68_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word68_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[16-1:0];
-        card_core0_regs_fifo1_reg_word68_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[7-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word68_chain_out_clamped = (card_core0_regs_fifo1_reg_word67_chain_out_clamped || card_core0_regs_fifo1_reg_word68_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store47_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word68__store45_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word68_shown <= 1;
+        card_core0_regs_fifo1_reg_word68_shown <= 0;
         card_core0_regs_fifo1_reg_word68_clamped <= 0;
     end
     else begin
@@ -3921,7 +3812,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 120);
+assign card_core0_regs_fifo1_reg_word69_mine = (pci_slave1_pci_requests1_local_addr == 112);
 
 
 always @(card_core0_regs_fifo1_reg_word69_mine, card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word68_chain_out_data) begin: card_core0_regs_fifo1_reg_word69_read_chain
@@ -3935,24 +3826,33 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_shown_wide = {8'h0, card_core0_regs_fifo1_watchdog_left};
+assign card_core0_regs_fifo1_reg_word69_shown_wide = {28'h0, card_core0_regs_fifo1_reg_word69_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_written_addr == 120);
+assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_written_addr == 112);
 
 
-
-assign card_core0_regs_fifo1_reg_word69_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
-
-
-always @(card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit48_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word69_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word69_written[32-1:24] != 0)) begin
-        card_core0_regs_fifo1_reg_word69_honoured = 16777215;
+always @(card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word69_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word69_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word69_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word69_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written[24-1:0];
+        card_core0_regs_fifo1_reg_word69_written = ((card_core0_regs_fifo1_reg_word69_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit46_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word69_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word69_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word69_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word69_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word69_written[32-1:4] != 0)) begin
+        card_core0_regs_fifo1_reg_word69_honoured = 15;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written[4-1:0];
         card_core0_regs_fifo1_reg_word69_out_of_range = 1'b0;
     end
 end
@@ -3962,18 +3862,15 @@ end
 assign card_core0_regs_fifo1_reg_word69_chain_out_clamped = (card_core0_regs_fifo1_reg_word68_chain_out_clamped || card_core0_regs_fifo1_reg_word69_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word69__store48_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word69__store46_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word69__store48_word_value <= 0;
+        card_core0_regs_fifo1_reg_word69_shown <= 3;
         card_core0_regs_fifo1_reg_word69_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word69_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word69_mine_write)) begin
-            card_core0_regs_fifo1_reg_word69__store48_word_value <= card_core0_regs_fifo1_reg_word69_honoured;
-            card_core0_regs_fifo1_reg_word69__store48_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word69_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word69_mine_write))) begin
+            card_core0_regs_fifo1_reg_word69_shown <= card_core0_regs_fifo1_reg_word69_honoured;
             card_core0_regs_fifo1_reg_word69_clamped <= card_core0_regs_fifo1_reg_word69_out_of_range;
         end
     end
@@ -3981,7 +3878,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 124);
+assign card_core0_regs_fifo1_reg_word70_mine = (pci_slave1_pci_requests1_local_addr == 116);
 
 
 always @(card_core0_regs_fifo1_reg_word70_mine, card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word69_chain_out_data) begin: card_core0_regs_fifo1_reg_word70_read_chain
@@ -3995,37 +3892,51 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_shown_wide = {30'h0, card_core0_regs_fifo1_reg_word70_shown};
+assign card_core0_regs_fifo1_reg_word70_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word70_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 124);
+assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 116);
 
 
+always @(card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word70_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word70_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word70_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
 
-assign card_core0_regs_fifo1_reg_word70_written = (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]);
 
-
-
-assign card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[2-1:0];
+always @(card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit47_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word70_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word70_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word70_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word70_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word70_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[16-1:0];
+        card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card_core0_regs_fifo1_reg_word70_chain_out_clamped = (card_core0_regs_fifo1_reg_word69_chain_out_clamped || card_core0_regs_fifo1_reg_word70_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store49_pulse_on_write
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word70__store47_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 0;
-        card_core0_regs_fifo1_reg_word70__store49_word_value <= 0;
+        card_core0_regs_fifo1_reg_word70_shown <= 1;
         card_core0_regs_fifo1_reg_word70_clamped <= 0;
     end
     else begin
-        card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word70_clamped <= 1'b0;
-        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write)) begin
-            card_core0_regs_fifo1_reg_word70__store49_word_value <= card_core0_regs_fifo1_reg_word70_honoured;
-            card_core0_regs_fifo1_reg_word70__store49_word_strobe <= 1'b1;
+        if (((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word70_mine_write))) begin
+            card_core0_regs_fifo1_reg_word70_shown <= card_core0_regs_fifo1_reg_word70_honoured;
             card_core0_regs_fifo1_reg_word70_clamped <= card_core0_regs_fifo1_reg_word70_out_of_range;
         end
     end
@@ -4033,7 +3944,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 128);
+assign card_core0_regs_fifo1_reg_word71_mine = (pci_slave1_pci_requests1_local_addr == 120);
 
 
 always @(card_core0_regs_fifo1_reg_word71_mine, card_core0_regs_fifo1_reg_word71_shown_wide, card_core0_regs_fifo1_reg_word70_chain_out_data) begin: card_core0_regs_fifo1_reg_word71_read_chain
@@ -4047,15 +3958,53 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word71_shown};
+assign card_core0_regs_fifo1_reg_word71_shown_wide = {8'h0, card_core0_regs_fifo1_watchdog_left};
 
 
 
-assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = card_core0_regs_fifo1_reg_word70_chain_out_clamped;
+assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_written_addr == 120);
 
 
 
-assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 132);
+assign card_core0_regs_fifo1_reg_word71_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+
+
+always @(card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit48_clamp_above_power_of_two
+    card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
+    if ((card_core0_regs_fifo1_reg_word71_written[32-1:24] != 0)) begin
+        card_core0_regs_fifo1_reg_word71_honoured = 16777215;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written[24-1:0];
+        card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word71_chain_out_clamped = (card_core0_regs_fifo1_reg_word70_chain_out_clamped || card_core0_regs_fifo1_reg_word71_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word71__store48_pulse_on_write
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word71__store48_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word71__store48_word_value <= 0;
+        card_core0_regs_fifo1_reg_word71_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word71__store48_word_strobe <= 1'b0;
+        card_core0_regs_fifo1_reg_word71_clamped <= 1'b0;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word71_mine_write)) begin
+            card_core0_regs_fifo1_reg_word71__store48_word_value <= card_core0_regs_fifo1_reg_word71_honoured;
+            card_core0_regs_fifo1_reg_word71__store48_word_strobe <= 1'b1;
+            card_core0_regs_fifo1_reg_word71_clamped <= card_core0_regs_fifo1_reg_word71_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word72_mine = (pci_slave1_pci_requests1_local_addr == 124);
 
 
 always @(card_core0_regs_fifo1_reg_word72_mine, card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word71_chain_out_data) begin: card_core0_regs_fifo1_reg_word72_read_chain
@@ -4069,51 +4018,37 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word72_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word72_shown};
+assign card_core0_regs_fifo1_reg_word72_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word72_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 132);
+assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_written_addr == 124);
 
 
-always @(card_core0_regs_fifo1_reg_word72_shown_wide, card_core0_regs_fifo1_reg_word72_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word72_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word72_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word72_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word72_written = ((card_core0_regs_fifo1_reg_word72_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word72_written = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word72_written) begin: card_core0_regs_fifo1_reg_word72__limit50_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word72_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word72_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word72_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word72_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word72_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word72_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[16-1:0];
-        card_core0_regs_fifo1_reg_word72_out_of_range = 1'b0;
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[7-1:0];
 
 
 
 assign card_core0_regs_fifo1_reg_word72_chain_out_clamped = (card_core0_regs_fifo1_reg_word71_chain_out_clamped || card_core0_regs_fifo1_reg_word72_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word72__store50_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word72__store49_pulse_on_write
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word72_shown <= 100;
+        card_core0_regs_fifo1_reg_word72__store49_word_strobe <= 0;
+        card_core0_regs_fifo1_reg_word72__store49_word_value <= 0;
         card_core0_regs_fifo1_reg_word72_clamped <= 0;
     end
     else begin
+        card_core0_regs_fifo1_reg_word72__store49_word_strobe <= 1'b0;
         card_core0_regs_fifo1_reg_word72_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word72_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word72_mine_write))) begin
-            card_core0_regs_fifo1_reg_word72_shown <= card_core0_regs_fifo1_reg_word72_honoured;
+        if ((card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word72_mine_write)) begin
+            card_core0_regs_fifo1_reg_word72__store49_word_value <= card_core0_regs_fifo1_reg_word72_honoured;
+            card_core0_regs_fifo1_reg_word72__store49_word_strobe <= 1'b1;
             card_core0_regs_fifo1_reg_word72_clamped <= card_core0_regs_fifo1_reg_word72_out_of_range;
         end
     end
@@ -4121,7 +4056,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 136);
+assign card_core0_regs_fifo1_reg_word73_mine = (pci_slave1_pci_requests1_local_addr == 128);
 
 
 always @(card_core0_regs_fifo1_reg_word73_mine, card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word72_chain_out_data) begin: card_core0_regs_fifo1_reg_word73_read_chain
@@ -4135,59 +4070,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word73_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word73_shown};
+assign card_core0_regs_fifo1_reg_word73_shown_wide = {26'h0, card_core0_regs_fifo1_reg_word73_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word73_mine_write = (card_core0_regs_fifo1_written_addr == 136);
-
-
-always @(card_core0_regs_fifo1_reg_word73_shown_wide, card_core0_regs_fifo1_reg_word73_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word73_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word73_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word73_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word73_written = ((card_core0_regs_fifo1_reg_word73_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_reg_word73_written) begin: card_core0_regs_fifo1_reg_word73__limit51_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word73_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word73_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word73_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word73_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word73_written[32-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word73_honoured = 65535;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word73_honoured = card_core0_regs_fifo1_reg_word73_written[16-1:0];
-        card_core0_regs_fifo1_reg_word73_out_of_range = 1'b0;
-    end
-end
+assign card_core0_regs_fifo1_reg_word73_chain_out_clamped = card_core0_regs_fifo1_reg_word72_chain_out_clamped;
 
 
 
-assign card_core0_regs_fifo1_reg_word73_chain_out_clamped = (card_core0_regs_fifo1_reg_word72_chain_out_clamped || card_core0_regs_fifo1_reg_word73_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word73__store51_hold_rw
-    if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word73_shown <= 1000;
-        card_core0_regs_fifo1_reg_word73_clamped <= 0;
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word73_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_reg_word73_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word73_mine_write))) begin
-            card_core0_regs_fifo1_reg_word73_shown <= card_core0_regs_fifo1_reg_word73_honoured;
-            card_core0_regs_fifo1_reg_word73_clamped <= card_core0_regs_fifo1_reg_word73_out_of_range;
-        end
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_reg_word74_mine = (pci_slave1_pci_requests1_local_addr == 140);
+assign card_core0_regs_fifo1_reg_word74_mine = (pci_slave1_pci_requests1_local_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word74_mine, card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word73_chain_out_data) begin: card_core0_regs_fifo1_reg_word74_read_chain
@@ -4205,7 +4096,7 @@ assign card_core0_regs_fifo1_reg_word74_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_written_addr == 140);
+assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_written_addr == 132);
 
 
 always @(card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word74_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word74_merge_bytes
@@ -4218,9 +4109,12 @@ always @(card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit52_clamp_above_power_of_two
+always @(card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit50_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word74_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word74_written[32-1:16] != 0)) begin
+    if (((card_core0_regs_fifo1_reg_word74_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word74_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word74_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word74_written[32-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word74_honoured = 65535;
     end
     else begin
@@ -4234,9 +4128,9 @@ end
 assign card_core0_regs_fifo1_reg_word74_chain_out_clamped = (card_core0_regs_fifo1_reg_word73_chain_out_clamped || card_core0_regs_fifo1_reg_word74_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word74__store52_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word74__store50_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word74_shown <= 0;
+        card_core0_regs_fifo1_reg_word74_shown <= 100;
         card_core0_regs_fifo1_reg_word74_clamped <= 0;
     end
     else begin
@@ -4250,7 +4144,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word75_mine = (pci_slave1_pci_requests1_local_addr == 144);
+assign card_core0_regs_fifo1_reg_word75_mine = (pci_slave1_pci_requests1_local_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word75_mine, card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word74_chain_out_data) begin: card_core0_regs_fifo1_reg_word75_read_chain
@@ -4264,11 +4158,11 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word75_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word75_shown};
+assign card_core0_regs_fifo1_reg_word75_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word75_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_written_addr == 144);
+assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_written_addr == 136);
 
 
 always @(card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word75_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word75_merge_bytes
@@ -4281,16 +4175,16 @@ always @(card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit53_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit51_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word75_out_of_range = 1'b1;
     if (((card_core0_regs_fifo1_reg_word75_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word75_written[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word75_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word75_written[32-1:23] != 0)) begin
-        card_core0_regs_fifo1_reg_word75_honoured = 8388607;
+    else if ((card_core0_regs_fifo1_reg_word75_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word75_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written[23-1:0];
+        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written[16-1:0];
         card_core0_regs_fifo1_reg_word75_out_of_range = 1'b0;
     end
 end
@@ -4300,9 +4194,9 @@ end
 assign card_core0_regs_fifo1_reg_word75_chain_out_clamped = (card_core0_regs_fifo1_reg_word74_chain_out_clamped || card_core0_regs_fifo1_reg_word75_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word75__store53_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word75__store51_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word75_shown <= 65535;
+        card_core0_regs_fifo1_reg_word75_shown <= 1000;
         card_core0_regs_fifo1_reg_word75_clamped <= 0;
     end
     else begin
@@ -4316,7 +4210,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word76_mine = (pci_slave1_pci_requests1_local_addr == 148);
+assign card_core0_regs_fifo1_reg_word76_mine = (pci_slave1_pci_requests1_local_addr == 140);
 
 
 always @(card_core0_regs_fifo1_reg_word76_mine, card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word75_chain_out_data) begin: card_core0_regs_fifo1_reg_word76_read_chain
@@ -4330,15 +4224,15 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word76_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word76_shown};
+assign card_core0_regs_fifo1_reg_word76_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word76_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_written_addr == 148);
+assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_written_addr == 140);
 
 
-always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word76_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8))) begin
+always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word76_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word76_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word76_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
         card_core0_regs_fifo1_reg_word76_written = card_core0_regs_fifo1_set_value[32-1:0];
     end
     else begin
@@ -4347,16 +4241,13 @@ always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_set_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit54_clamp_unsigned_power_of_two
+always @(card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit52_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word76_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word76_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word76_written[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word76_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word76_written[32-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word76_honoured = 255;
+    if ((card_core0_regs_fifo1_reg_word76_written[32-1:16] != 0)) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written[8-1:0];
+        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written[16-1:0];
         card_core0_regs_fifo1_reg_word76_out_of_range = 1'b0;
     end
 end
@@ -4366,14 +4257,14 @@ end
 assign card_core0_regs_fifo1_reg_word76_chain_out_clamped = (card_core0_regs_fifo1_reg_word75_chain_out_clamped || card_core0_regs_fifo1_reg_word76_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word76__store54_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word76__store52_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_reg_word76_shown <= 1;
+        card_core0_regs_fifo1_reg_word76_shown <= 0;
         card_core0_regs_fifo1_reg_word76_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word76_clamped <= 1'b0;
-        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word76_mine_write))) begin
+        if (((card_core0_regs_fifo1_reg_word76_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word76_mine_write))) begin
             card_core0_regs_fifo1_reg_word76_shown <= card_core0_regs_fifo1_reg_word76_honoured;
             card_core0_regs_fifo1_reg_word76_clamped <= card_core0_regs_fifo1_reg_word76_out_of_range;
         end
@@ -4382,25 +4273,25 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_mine = (pci_slave1_pci_requests1_local_addr == 152);
+assign card_core0_regs_fifo1_reg_word77_mine = (pci_slave1_pci_requests1_local_addr == 144);
 
 
 always @(card_core0_regs_fifo1_reg_word77_mine, card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word76_chain_out_data) begin: card_core0_regs_fifo1_reg_word77_read_chain
     if (card_core0_regs_fifo1_reg_word77_mine) begin
-        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word76_chain_out_data | card_core0_regs_fifo1_reg_word77_shown_wide);
+        card_core0_regs_fifo1_reg_word77_chain_out_data = (card_core0_regs_fifo1_reg_word76_chain_out_data | card_core0_regs_fifo1_reg_word77_shown_wide);
     end
     else begin
-        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word76_chain_out_data;
+        card_core0_regs_fifo1_reg_word77_chain_out_data = card_core0_regs_fifo1_reg_word76_chain_out_data;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_shown_wide = {30'h0, card_core0_regs_fifo1_step_mode};
+assign card_core0_regs_fifo1_reg_word77_shown_wide = {9'h0, card_core0_regs_fifo1_reg_word77_shown};
 
 
 
-assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_written_addr == 152);
+assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_written_addr == 144);
 
 
 always @(card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word77_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word77_merge_bytes
@@ -4413,13 +4304,16 @@ always @(card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_
 end
 
 
-always @(card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit55_clamp_above
+always @(card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit53_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word77_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word77_written[32-1:2] != 0) || (card_core0_regs_fifo1_reg_word77_written[2-1:0] > 2))) begin
-        card_core0_regs_fifo1_reg_word77_honoured = 2;
+    if (((card_core0_regs_fifo1_reg_word77_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word77_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word77_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word77_written[32-1:23] != 0)) begin
+        card_core0_regs_fifo1_reg_word77_honoured = 8388607;
     end
     else begin
-        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written[2-1:0];
+        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written[23-1:0];
         card_core0_regs_fifo1_reg_word77_out_of_range = 1'b0;
     end
 end
@@ -4429,19 +4323,192 @@ end
 assign card_core0_regs_fifo1_reg_word77_chain_out_clamped = (card_core0_regs_fifo1_reg_word76_chain_out_clamped || card_core0_regs_fifo1_reg_word77_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word77__store55_hold_rw
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word77__store53_hold_rw
     if (reset == 0) begin
-        card_core0_regs_fifo1_step_mode <= 0;
+        card_core0_regs_fifo1_reg_word77_shown <= 65535;
         card_core0_regs_fifo1_reg_word77_clamped <= 0;
     end
     else begin
         card_core0_regs_fifo1_reg_word77_clamped <= 1'b0;
         if (((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word77_mine_write))) begin
-            card_core0_regs_fifo1_step_mode <= card_core0_regs_fifo1_reg_word77_honoured;
+            card_core0_regs_fifo1_reg_word77_shown <= card_core0_regs_fifo1_reg_word77_honoured;
             card_core0_regs_fifo1_reg_word77_clamped <= card_core0_regs_fifo1_reg_word77_out_of_range;
         end
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word78_mine = (pci_slave1_pci_requests1_local_addr == 148);
+
+
+always @(card_core0_regs_fifo1_reg_word78_mine, card_core0_regs_fifo1_reg_word78_shown_wide, card_core0_regs_fifo1_reg_word77_chain_out_data) begin: card_core0_regs_fifo1_reg_word78_read_chain
+    if (card_core0_regs_fifo1_reg_word78_mine) begin
+        card_core0_regs_fifo1_reg_word78_chain_out_data = (card_core0_regs_fifo1_reg_word77_chain_out_data | card_core0_regs_fifo1_reg_word78_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78_chain_out_data = card_core0_regs_fifo1_reg_word77_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word78_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word78_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word78_mine_write = (card_core0_regs_fifo1_written_addr == 148);
+
+
+always @(card_core0_regs_fifo1_reg_word78_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word78_merge_bytes
+    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8))) begin
+        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78_written = ((card_core0_regs_fifo1_reg_word78_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit54_clamp_unsigned_power_of_two
+    card_core0_regs_fifo1_reg_word78_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word78_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word78_written[1-1:0] < 1))) begin
+        card_core0_regs_fifo1_reg_word78_honoured = 1;
+    end
+    else if ((card_core0_regs_fifo1_reg_word78_written[32-1:8] != 0)) begin
+        card_core0_regs_fifo1_reg_word78_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written[8-1:0];
+        card_core0_regs_fifo1_reg_word78_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word78_chain_out_clamped = (card_core0_regs_fifo1_reg_word77_chain_out_clamped || card_core0_regs_fifo1_reg_word78_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word78__store54_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_reg_word78_shown <= 1;
+        card_core0_regs_fifo1_reg_word78_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word78_mine_write))) begin
+            card_core0_regs_fifo1_reg_word78_shown <= card_core0_regs_fifo1_reg_word78_honoured;
+            card_core0_regs_fifo1_reg_word78_clamped <= card_core0_regs_fifo1_reg_word78_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word79_mine = (pci_slave1_pci_requests1_local_addr == 152);
+
+
+always @(card_core0_regs_fifo1_reg_word79_mine, card_core0_regs_fifo1_reg_word79_shown_wide, card_core0_regs_fifo1_reg_word78_chain_out_data) begin: card_core0_regs_fifo1_reg_word79_read_chain
+    if (card_core0_regs_fifo1_reg_word79_mine) begin
+        card_core0_regs_fifo1_reg_word79_chain_out_data = (card_core0_regs_fifo1_reg_word78_chain_out_data | card_core0_regs_fifo1_reg_word79_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word79_chain_out_data = card_core0_regs_fifo1_reg_word78_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word79_shown_wide = {30'h0, card_core0_regs_fifo1_step_mode};
+
+
+
+assign card_core0_regs_fifo1_reg_word79_mine_write = (card_core0_regs_fifo1_written_addr == 152);
+
+
+always @(card_core0_regs_fifo1_reg_word79_shown_wide, card_core0_regs_fifo1_reg_word79_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word79_merge_bytes
+    if ((card_core0_regs_fifo1_reg_word79_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
+        card_core0_regs_fifo1_reg_word79_written = card_core0_regs_fifo1_set_value[32-1:0];
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word79_written = ((card_core0_regs_fifo1_reg_word79_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word79_written) begin: card_core0_regs_fifo1_reg_word79__limit55_clamp_above
+    card_core0_regs_fifo1_reg_word79_out_of_range = 1'b1;
+    if (((card_core0_regs_fifo1_reg_word79_written[32-1:2] != 0) || (card_core0_regs_fifo1_reg_word79_written[2-1:0] > 2))) begin
+        card_core0_regs_fifo1_reg_word79_honoured = 2;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_written[2-1:0];
+        card_core0_regs_fifo1_reg_word79_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word79_chain_out_clamped = (card_core0_regs_fifo1_reg_word78_chain_out_clamped || card_core0_regs_fifo1_reg_word79_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_reg_word79__store55_hold_rw
+    if (reset == 0) begin
+        card_core0_regs_fifo1_step_mode <= 0;
+        card_core0_regs_fifo1_reg_word79_clamped <= 0;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word79_clamped <= 1'b0;
+        if (((card_core0_regs_fifo1_reg_word79_set_mine && (card_core0_regs_fifo1_set_index == 0)) || (card_core0_regs_fifo1_io_written && card_core0_regs_fifo1_reg_word79_mine_write))) begin
+            card_core0_regs_fifo1_step_mode <= card_core0_regs_fifo1_reg_word79_honoured;
+            card_core0_regs_fifo1_reg_word79_clamped <= card_core0_regs_fifo1_reg_word79_out_of_range;
+        end
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word80_mine = (pci_slave1_pci_requests1_local_addr == 156);
+
+
+always @(card_core0_regs_fifo1_reg_word80_mine, card_core0_regs_fifo1_reg_word80_shown_wide, card_core0_regs_fifo1_reg_word79_chain_out_data) begin: card_core0_regs_fifo1_reg_word80_read_chain
+    if (card_core0_regs_fifo1_reg_word80_mine) begin
+        card_core0_regs_fifo1_reg_word80_chain_out_data = (card_core0_regs_fifo1_reg_word79_chain_out_data | card_core0_regs_fifo1_reg_word80_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word80_chain_out_data = card_core0_regs_fifo1_reg_word79_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word80_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word80_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word80_chain_out_clamped = card_core0_regs_fifo1_reg_word79_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word81_mine = (pci_slave1_pci_requests1_local_addr == 160);
+
+
+always @(card_core0_regs_fifo1_reg_word81_mine, card_core0_regs_fifo1_reg_word81_shown_wide, card_core0_regs_fifo1_reg_word80_chain_out_data) begin: card_core0_regs_fifo1_reg_word81_read_chain
+    if (card_core0_regs_fifo1_reg_word81_mine) begin
+        card_core0_regs_fifo1_read_end = (card_core0_regs_fifo1_reg_word80_chain_out_data | card_core0_regs_fifo1_reg_word81_shown_wide);
+    end
+    else begin
+        card_core0_regs_fifo1_read_end = card_core0_regs_fifo1_reg_word80_chain_out_data;
+    end
+end
+
+
+
+assign card_core0_regs_fifo1_reg_word81_shown_wide = {25'h0, card_core0_regs_fifo1_reg_word81_shown};
+
+
+
+assign card_core0_regs_fifo1_reg_word81_chain_out_clamped = card_core0_regs_fifo1_reg_word80_chain_out_clamped;
 
 
 
@@ -5193,13 +5260,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
         card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
-        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word49_shown;
-        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word50_shown;
+        card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word51_shown;
+        card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word52_shown;
         card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
         card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word49_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word49_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word50_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word51_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
+        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word51_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
+        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word52_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -5370,9 +5437,9 @@ assign card_core0_regs_fifo1_direct_pulse2_command_busy = (card_core0_regs_fifo1
 assign card_core0_regs_fifo1_direct_pulse2_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse2_command_retarget && (card_core0_regs_fifo1_direct_pulse2_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse2_command_retarget) && card_core0_regs_fifo1_direct_pulse2_pending)));
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_direct_pulse2_stepping, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word60_shown, card_core0_regs_fifo1_direct_pulse2_stepping, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_command_retarget))) begin
-        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word58_shown;
+        card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word60_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
@@ -5412,18 +5479,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse2_pending <= 0;
-        card_core0_regs_fifo1_reg_word58_shown <= 0;
+        card_core0_regs_fifo1_reg_word60_shown <= 0;
         card_core0_regs_fifo1_direct_request_x <= 0;
         card_core0_regs_fifo1_direct_pulse2_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_x <= 0;
         if (card_core0_regs_fifo1_direct_clear) begin
-            card_core0_regs_fifo1_reg_word58_shown <= 0;
+            card_core0_regs_fifo1_reg_word60_shown <= 0;
             card_core0_regs_fifo1_direct_pulse2_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse2_command_load) begin
-            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             card_core0_regs_fifo1_direct_dir_x <= (card_core0_regs_fifo1_direct_pulse2_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             card_core0_regs_fifo1_direct_pulse2_gap <= 0;
@@ -5431,19 +5498,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         end
         else if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
             card_core0_regs_fifo1_direct_request_x <= 1;
-            card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+            card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
             if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
                 card_core0_regs_fifo1_direct_pulse2_pending <= (!((card_core0_regs_fifo1_direct_pulse2_command_count == 1) || (card_core0_regs_fifo1_direct_pulse2_command_count == (-1))));
             end
             else begin
-                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word58_shown != 1);
+                card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_reg_word60_shown != 1);
             end
             card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
             card_core0_regs_fifo1_direct_pulse2_waiting <= (card_core0_regs_fifo1_direct_pulse2_command_period != 1);
         end
         else begin
             if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
-                card_core0_regs_fifo1_reg_word58_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
             end
             if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
@@ -5463,9 +5530,9 @@ assign card_core0_regs_fifo1_direct_pulse3_command_busy = (card_core0_regs_fifo1
 assign card_core0_regs_fifo1_direct_pulse3_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse3_command_retarget && (card_core0_regs_fifo1_direct_pulse3_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse3_command_retarget) && card_core0_regs_fifo1_direct_pulse3_pending)));
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_direct_pulse3_stepping, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word61_shown, card_core0_regs_fifo1_direct_pulse3_stepping, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_command_retarget))) begin
-        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word59_shown;
+        card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word61_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
     end
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
@@ -5505,18 +5572,18 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         card_core0_regs_fifo1_direct_dir_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_waiting <= 0;
         card_core0_regs_fifo1_direct_pulse3_pending <= 0;
-        card_core0_regs_fifo1_reg_word59_shown <= 0;
+        card_core0_regs_fifo1_reg_word61_shown <= 0;
         card_core0_regs_fifo1_direct_request_y <= 0;
         card_core0_regs_fifo1_direct_pulse3_gap <= 0;
     end
     else begin
         card_core0_regs_fifo1_direct_request_y <= 0;
         if (card_core0_regs_fifo1_direct_clear) begin
-            card_core0_regs_fifo1_reg_word59_shown <= 0;
+            card_core0_regs_fifo1_reg_word61_shown <= 0;
             card_core0_regs_fifo1_direct_pulse3_pending <= 0;
         end
         else if (card_core0_regs_fifo1_direct_pulse3_command_load) begin
-            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             card_core0_regs_fifo1_direct_dir_y <= (card_core0_regs_fifo1_direct_pulse3_command_count >= 0);
             card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             card_core0_regs_fifo1_direct_pulse3_gap <= 0;
@@ -5524,19 +5591,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         end
         else if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
             card_core0_regs_fifo1_direct_request_y <= 1;
-            card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+            card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
             if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
                 card_core0_regs_fifo1_direct_pulse3_pending <= (!((card_core0_regs_fifo1_direct_pulse3_command_count == 1) || (card_core0_regs_fifo1_direct_pulse3_command_count == (-1))));
             end
             else begin
-                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word59_shown != 1);
+                card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_reg_word61_shown != 1);
             end
             card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
             card_core0_regs_fifo1_direct_pulse3_waiting <= (card_core0_regs_fifo1_direct_pulse3_command_period != 1);
         end
         else begin
             if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
-                card_core0_regs_fifo1_reg_word59_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
             end
             if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
@@ -5595,11 +5662,11 @@ always @(card_core0_regs_fifo1_pulse_out1_axis_x_dir_level) begin: card_core0_re
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_axis_x_level, card_core0_regs_fifo1_reg_word55_shown[0], card_core0_regs_fifo1_pulse_out1_axis_x_dir_level, card_core0_regs_fifo1_pulse_out1_axis_x_quad, card_core0_regs_fifo1_pulse_out1_axis_x_pulse) begin: card_core0_regs_fifo1_pulse_out1_axis_x_pin_direction
-    card_core0_regs_fifo1_pulse_out1_axis_x_up = (card_core0_regs_fifo1_pulse_out1_axis_x_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[0]);
+always @(card_core0_regs_fifo1_pulse_out1_axis_x_level, card_core0_regs_fifo1_reg_word57_shown[0], card_core0_regs_fifo1_pulse_out1_axis_x_dir_level, card_core0_regs_fifo1_pulse_out1_axis_x_quad, card_core0_regs_fifo1_pulse_out1_axis_x_pulse) begin: card_core0_regs_fifo1_pulse_out1_axis_x_pin_direction
+    card_core0_regs_fifo1_pulse_out1_axis_x_up = (card_core0_regs_fifo1_pulse_out1_axis_x_dir_level ^ card_core0_regs_fifo1_reg_word57_shown[0]);
     card_core0_regs_fifo1_pulse_out1_axis_x_quad_next = card_core0_regs_fifo1_pulse_out1_axis_x_quad;
     if ((card_core0_regs_fifo1_pulse_out1_axis_x_level && (!card_core0_regs_fifo1_pulse_out1_axis_x_pulse))) begin
-        if ((card_core0_regs_fifo1_pulse_out1_axis_x_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[0])) begin
+        if ((card_core0_regs_fifo1_pulse_out1_axis_x_dir_level ^ card_core0_regs_fifo1_reg_word57_shown[0])) begin
             card_core0_regs_fifo1_pulse_out1_axis_x_quad_next = (card_core0_regs_fifo1_pulse_out1_axis_x_quad + 1);
         end
         else begin
@@ -5689,11 +5756,11 @@ always @(card_core0_regs_fifo1_pulse_out1_axis_y_dir_level) begin: card_core0_re
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_axis_y_level, card_core0_regs_fifo1_reg_word55_shown[1], card_core0_regs_fifo1_pulse_out1_axis_y_dir_level, card_core0_regs_fifo1_pulse_out1_axis_y_quad, card_core0_regs_fifo1_pulse_out1_axis_y_pulse) begin: card_core0_regs_fifo1_pulse_out1_axis_y_pin_direction
-    card_core0_regs_fifo1_pulse_out1_axis_y_up = (card_core0_regs_fifo1_pulse_out1_axis_y_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[1]);
+always @(card_core0_regs_fifo1_pulse_out1_axis_y_level, card_core0_regs_fifo1_reg_word57_shown[1], card_core0_regs_fifo1_pulse_out1_axis_y_dir_level, card_core0_regs_fifo1_pulse_out1_axis_y_quad, card_core0_regs_fifo1_pulse_out1_axis_y_pulse) begin: card_core0_regs_fifo1_pulse_out1_axis_y_pin_direction
+    card_core0_regs_fifo1_pulse_out1_axis_y_up = (card_core0_regs_fifo1_pulse_out1_axis_y_dir_level ^ card_core0_regs_fifo1_reg_word57_shown[1]);
     card_core0_regs_fifo1_pulse_out1_axis_y_quad_next = card_core0_regs_fifo1_pulse_out1_axis_y_quad;
     if ((card_core0_regs_fifo1_pulse_out1_axis_y_level && (!card_core0_regs_fifo1_pulse_out1_axis_y_pulse))) begin
-        if ((card_core0_regs_fifo1_pulse_out1_axis_y_dir_level ^ card_core0_regs_fifo1_reg_word55_shown[1])) begin
+        if ((card_core0_regs_fifo1_pulse_out1_axis_y_dir_level ^ card_core0_regs_fifo1_reg_word57_shown[1])) begin
             card_core0_regs_fifo1_pulse_out1_axis_y_quad_next = (card_core0_regs_fifo1_pulse_out1_axis_y_quad + 1);
         end
         else begin
@@ -5762,12 +5829,12 @@ assign card_core0_regs_fifo1_pulse_out1_control_pulsing = (card_core0_regs_fifo1
 assign card_core0_regs_fifo1_pulse_out1_head = card_core0_regs_fifo1_pulse_out1_queue[0];
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_reg_word53_shown, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_turns) begin: card_core0_regs_fifo1_pulse_out1_decide
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_count, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_reg_word78_shown, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_turns) begin: card_core0_regs_fifo1_pulse_out1_decide
     card_core0_regs_fifo1_pulse_out1_turn = ((card_core0_regs_fifo1_pulse_out1_count != 0) && (card_core0_regs_fifo1_pulse_out1_turns != 0));
     card_core0_regs_fifo1_pulse_out1_take = 1'b0;
-    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word76_shown))) begin
+    if (((card_core0_regs_fifo1_pulse_out1_phase != 2'b10) && (!card_core0_regs_fifo1_pulse_clear) && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word78_shown))) begin
         if ((card_core0_regs_fifo1_pulse_out1_phase == 2'b01)) begin
-            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word53_shown);
+            card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word55_shown);
         end
         else if ((card_core0_regs_fifo1_pulse_out1_count != 0)) begin
             card_core0_regs_fifo1_pulse_out1_take = (card_core0_regs_fifo1_pulse_out1_turns == 0);
@@ -5776,10 +5843,10 @@ always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pu
 end
 
 
-always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word52_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word54_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
-    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word54_shown)));
-    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word52_shown));
-    card_core0_regs_fifo1_pulse_out1_set_dir = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word54_shown) && (!card_core0_regs_fifo1_pulse_out1_take));
+always @(card_core0_regs_fifo1_pulse_out1_phase_clocks, card_core0_regs_fifo1_pulse_out1_phase, card_core0_regs_fifo1_pulse_out1_low_clocks, card_core0_regs_fifo1_pulse_out1_turn, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_pulse_clear, card_core0_regs_fifo1_pulse_out1_take, card_core0_regs_fifo1_reg_word56_shown) begin: card_core0_regs_fifo1_pulse_out1_restart
+    card_core0_regs_fifo1_pulse_out1_starts = (card_core0_regs_fifo1_pulse_out1_take || ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word56_shown)));
+    card_core0_regs_fifo1_pulse_out1_high_ends = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b10) && (card_core0_regs_fifo1_pulse_out1_phase_clocks >= card_core0_regs_fifo1_reg_word54_shown));
+    card_core0_regs_fifo1_pulse_out1_set_dir = ((card_core0_regs_fifo1_pulse_out1_phase == 2'b00) && (!card_core0_regs_fifo1_pulse_clear) && card_core0_regs_fifo1_pulse_out1_turn && (card_core0_regs_fifo1_pulse_out1_low_clocks >= card_core0_regs_fifo1_reg_word56_shown) && (!card_core0_regs_fifo1_pulse_out1_take));
     card_core0_regs_fifo1_pulse_out1_phase_step = 0;
     if ((card_core0_regs_fifo1_pulse_out1_phase_clocks != 255)) begin
         card_core0_regs_fifo1_pulse_out1_phase_step = 1;
@@ -5890,7 +5957,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word66_shown);
+assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word68_shown);
 assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
 
 
@@ -5900,7 +5967,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter
     end
     else begin
         if (card_core0_regs_fifo1_input_filter1_sample) begin
-            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word68_shown - 1);
+            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word70_shown - 1);
         end
         else begin
             card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);
@@ -5942,7 +6009,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count7_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[0] != card_core0_regs_fifo1_conditioning_active[0]) && ((card_core0_regs_fifo1_input_filter1__input_count7_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count8_count_samples
@@ -5966,7 +6033,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count8_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[1] != card_core0_regs_fifo1_conditioning_active[1]) && ((card_core0_regs_fifo1_input_filter1__input_count8_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count9_count_samples
@@ -5990,7 +6057,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count9_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[2] != card_core0_regs_fifo1_conditioning_active[2]) && ((card_core0_regs_fifo1_input_filter1__input_count9_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count10_count_samples
@@ -6014,7 +6081,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count10_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[3] != card_core0_regs_fifo1_conditioning_active[3]) && ((card_core0_regs_fifo1_input_filter1__input_count10_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count11_count_samples
@@ -6038,7 +6105,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count11_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[4] != card_core0_regs_fifo1_conditioning_active[4]) && ((card_core0_regs_fifo1_input_filter1__input_count11_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count12_count_samples
@@ -6062,7 +6129,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count12_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[5] != card_core0_regs_fifo1_conditioning_active[5]) && ((card_core0_regs_fifo1_input_filter1__input_count12_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1__input_count13_count_samples
@@ -6086,7 +6153,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word67_shown));
+assign card_core0_regs_fifo1_input_filter1__input_count13_taken = (card_core0_regs_fifo1_input_filter1_sample && (card_core0_regs_fifo1_input_filter1_level[6] != card_core0_regs_fifo1_conditioning_active[6]) && ((card_core0_regs_fifo1_input_filter1__input_count13_held + 1) >= card_core0_regs_fifo1_reg_word69_shown));
 
 
 
@@ -6100,9 +6167,18 @@ assign card_core0_regs_fifo1_machine_guard1_grant_y_granted_dir = card_core0_reg
 
 
 
+assign card_core0_regs_fifo1_machine_guard1_limit_x_hit_pos = (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1]);
+assign card_core0_regs_fifo1_machine_guard1_limit_x_hit_neg = (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]);
+
+
+
+assign card_core0_regs_fifo1_machine_guard1_limit_y_hit_pos = (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]);
+assign card_core0_regs_fifo1_machine_guard1_limit_y_hit_neg = (card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]);
+
+
+
 assign card_core0_regs_fifo1_machine_guard1_estop = card_core0_regs_fifo1_conditioning_active[0];
-assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word69__store48_word_strobe));
-assign card_core0_regs_fifo1_machine_guard1_hits = {(card_core0_regs_fifo1_requests_step_y && (!card_core0_regs_fifo1_requests_dir_y) && card_core0_regs_fifo1_conditioning_active[4]), (card_core0_regs_fifo1_requests_step_y && card_core0_regs_fifo1_requests_dir_y && card_core0_regs_fifo1_conditioning_active[3]), (card_core0_regs_fifo1_requests_step_x && (!card_core0_regs_fifo1_requests_dir_x) && card_core0_regs_fifo1_conditioning_active[2]), (card_core0_regs_fifo1_requests_step_x && card_core0_regs_fifo1_requests_dir_x && card_core0_regs_fifo1_conditioning_active[1])};
+assign card_core0_regs_fifo1_machine_guard1_expired = ((card_core0_regs_fifo1_watchdog_left == 1) && (!card_core0_regs_fifo1_reg_word71__store48_word_strobe));
 
 
 
@@ -6166,8 +6242,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
         card_core0_regs_fifo1_watchdog_left <= 0;
     end
     else begin
-        if (card_core0_regs_fifo1_reg_word69__store48_word_strobe) begin
-            card_core0_regs_fifo1_watchdog_left <= card_core0_regs_fifo1_reg_word69__store48_word_value;
+        if (card_core0_regs_fifo1_reg_word71__store48_word_strobe) begin
+            card_core0_regs_fifo1_watchdog_left <= card_core0_regs_fifo1_reg_word71__store48_word_value;
         end
         else if ((card_core0_regs_fifo1_watchdog_left != 0)) begin
             card_core0_regs_fifo1_watchdog_left <= (card_core0_regs_fifo1_watchdog_left - 1);
@@ -6176,22 +6252,41 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
 end
 
 
-always @(card_core0_regs_fifo1_reg_word75_shown, card_core0_regs_fifo1_reg_word74_shown, card_core0_regs_fifo1_home_inputs, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
-    card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_axis ? card_core0_regs_fifo1_home_inputs[1] : card_core0_regs_fifo1_home_inputs[0];
-    card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
-    card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
-    if (((card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b100))) begin
-        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word74_shown};
+always @(card_core0_regs_fifo1_reg_word72__store49_word_value) begin: card_core0_regs_fifo1_homing1_ask
+    if ((card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4] != 0)) begin
+        card_core0_regs_fifo1_homing1_asked = card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4];
+        card_core0_regs_fifo1_homing1_valid = (card_core0_regs_fifo1_reg_word72__store49_word_value[7-1:4] < 2);
     end
     else begin
-        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word75_shown};
+        card_core0_regs_fifo1_homing1_asked = {2'h0, card_core0_regs_fifo1_reg_word72__store49_word_value[0]};
+        card_core0_regs_fifo1_homing1_valid = 1'b1;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word70__store49_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
+
+assign card_core0_regs_fifo1_homing1_slot = card_core0_regs_fifo1_homing1_axis[1-1:0];
+
+
+always @(card_core0_regs_fifo1_reg_word77_shown, card_core0_regs_fifo1_homing1_slot, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_homing1_port_home, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_select
+    card_core0_regs_fifo1_homing1_switch = 0;
+    if ((card_core0_regs_fifo1_homing1_axis < 2)) begin
+        card_core0_regs_fifo1_homing1_switch = card_core0_regs_fifo1_homing1_port_home[card_core0_regs_fifo1_homing1_slot];
+    end
+    card_core0_regs_fifo1_homing1_seeking = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b010));
+    card_core0_regs_fifo1_homing1_seek_next = ((card_core0_regs_fifo1_homing1_state == 3'b000) || (card_core0_regs_fifo1_homing1_state == 3'b001) || ((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)));
+    if (((card_core0_regs_fifo1_homing1_state == 3'b011) || (card_core0_regs_fifo1_homing1_state == 3'b100))) begin
+        card_core0_regs_fifo1_homing1_magnitude = {8'h0, card_core0_regs_fifo1_reg_word76_shown};
+    end
+    else begin
+        card_core0_regs_fifo1_homing1_magnitude = {1'h0, card_core0_regs_fifo1_reg_word77_shown};
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word72__store49_word_value, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_negative) begin: card_core0_regs_fifo1_homing1_command
     if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word70__store49_word_value[1]);
+        card_core0_regs_fifo1_homing1_positive = (!card_core0_regs_fifo1_reg_word72__store49_word_value[1]);
     end
     else begin
         card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
@@ -6225,18 +6320,19 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next
     else begin
         card_core0_regs_fifo1_homing1_port_count <= $signed(card_core0_regs_fifo1_homing1_signed_count);
         if (card_core0_regs_fifo1_homing1_seek_next) begin
-            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word72_shown;
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word74_shown;
         end
         else begin
-            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word73_shown;
+            card_core0_regs_fifo1_homing1_port_period <= card_core0_regs_fifo1_reg_word75_shown;
         end
     end
 end
 
 
-always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
+always @(card_core0_regs_fifo1_homing1_slot, card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
     reg drained;
     reg released;
+    reg [2-1:0] zero;
     drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
     released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
     card_core0_regs_fifo1_homing1_opened = released;
@@ -6244,15 +6340,11 @@ always @(card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, car
     card_core0_regs_fifo1_homing1_finished = ((card_core0_regs_fifo1_homing1_state == 3'b110) && (!card_core0_regs_fifo1_out_active));
     card_core0_regs_fifo1_home_cut = ((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch);
     card_core0_regs_fifo1_homing1_port_retarget = released;
-    card_core0_regs_fifo1_home_zero = 0;
-    if (released) begin
-        if (card_core0_regs_fifo1_homing1_axis) begin
-            card_core0_regs_fifo1_home_zero = 2;
-        end
-        else begin
-            card_core0_regs_fifo1_home_zero = 1;
-        end
+    zero = 2'h0;
+    if ((released && (card_core0_regs_fifo1_homing1_axis < 2))) begin
+        zero[card_core0_regs_fifo1_homing1_slot] = 1;
     end
+    card_core0_regs_fifo1_home_zero = zero;
 end
 
 
@@ -6272,20 +6364,21 @@ always @(card_core0_regs_fifo1_homing1_seeking, card_core0_regs_fifo1_homing1_st
 end
 
 
-always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word70__store49_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
-    reg [2-1:0] asked;
+always @(card_core0_regs_fifo1_homing1_negative, card_core0_regs_fifo1_homing1_phase, card_core0_regs_fifo1_homing1_done, card_core0_regs_fifo1_homing1_refused, card_core0_regs_fifo1_reg_word72__store49_word_strobe, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_state, card_core0_regs_fifo1_homing1_not_found) begin: card_core0_regs_fifo1_homing1_show
+    reg [7-1:0] taken;
     reg [6-1:0] word;
-    asked = 2'h0;
-    asked[0] = card_core0_regs_fifo1_homing1_axis;
-    asked[1] = card_core0_regs_fifo1_homing1_negative;
-    card_core0_regs_fifo1_reg_word70_shown = asked;
+    taken = 7'h0;
+    taken[0] = card_core0_regs_fifo1_homing1_axis[0];
+    taken[1] = card_core0_regs_fifo1_homing1_negative;
+    taken[7-1:4] = card_core0_regs_fifo1_homing1_axis;
+    card_core0_regs_fifo1_reg_word72_shown = taken;
     word = 6'h0;
-    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word70__store49_word_strobe);
+    word[0] = ((card_core0_regs_fifo1_homing1_state != 3'b000) || card_core0_regs_fifo1_reg_word72__store49_word_strobe);
     word[1] = card_core0_regs_fifo1_homing1_done;
     word[2] = card_core0_regs_fifo1_homing1_not_found;
     word[3] = card_core0_regs_fifo1_homing1_refused;
     word[4+:2] = card_core0_regs_fifo1_homing1_phase;
-    card_core0_regs_fifo1_reg_word71_shown = word;
+    card_core0_regs_fifo1_reg_word73_shown = word;
 end
 
 
@@ -6301,7 +6394,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
     else begin
         card_core0_regs_fifo1_homing1_port_ended <= 0;
         if (card_core0_core_clear) begin
-            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
+            if (card_core0_regs_fifo1_reg_word72__store49_word_strobe) begin
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
                 card_core0_regs_fifo1_homing1_refused <= 1;
@@ -6309,17 +6402,17 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
             end
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
-                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_reg_word70__store49_word_value[0];
-                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word70__store49_word_value[1];
+            if (card_core0_regs_fifo1_reg_word72__store49_word_strobe) begin
+                card_core0_regs_fifo1_homing1_axis <= card_core0_regs_fifo1_homing1_asked;
+                card_core0_regs_fifo1_homing1_negative <= card_core0_regs_fifo1_reg_word72__store49_word_value[1];
                 card_core0_regs_fifo1_homing1_done <= 0;
                 card_core0_regs_fifo1_homing1_not_found <= 0;
-                card_core0_regs_fifo1_homing1_refused <= (!card_core0_regs_fifo1_home_idle);
-                card_core0_regs_fifo1_homing1_port_ended <= (!card_core0_regs_fifo1_home_idle);
+                card_core0_regs_fifo1_homing1_refused <= ((!card_core0_regs_fifo1_home_idle) || (!card_core0_regs_fifo1_homing1_valid));
+                card_core0_regs_fifo1_homing1_port_ended <= ((!card_core0_regs_fifo1_home_idle) || (!card_core0_regs_fifo1_homing1_valid));
             end
         end
         else begin
-            if (card_core0_regs_fifo1_reg_word70__store49_word_strobe) begin
+            if (card_core0_regs_fifo1_reg_word72__store49_word_strobe) begin
                 card_core0_regs_fifo1_homing1_refused <= 1;
                 card_core0_regs_fifo1_homing1_port_ended <= 1;
             end
@@ -6345,7 +6438,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
             card_core0_regs_fifo1_homing1_state <= 3'b000;
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if ((card_core0_regs_fifo1_reg_word70__store49_word_strobe && card_core0_regs_fifo1_home_idle)) begin
+            if ((card_core0_regs_fifo1_reg_word72__store49_word_strobe && card_core0_regs_fifo1_home_idle && card_core0_regs_fifo1_homing1_valid)) begin
                 card_core0_regs_fifo1_homing1_state <= 3'b001;
             end
         end
@@ -6362,7 +6455,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequ
         end
         else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
             if (card_core0_regs_fifo1_homing1_opened) begin
-                if ((card_core0_regs_fifo1_reg_word74_shown != 0)) begin
+                if ((card_core0_regs_fifo1_reg_word76_shown != 0)) begin
                     card_core0_regs_fifo1_homing1_state <= 3'b101;
                 end
                 else begin
@@ -6456,7 +6549,6 @@ always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card
     card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
     card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
     card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
-    card_core0_regs_fifo1_home_inputs = card_core0_regs_fifo1_conditioning_active[5+:2];
     card_core0_regs_fifo1_drive_cleared = 0;
     if (card_core0_regs_fifo1_guard_stopped) begin
         card_core0_regs_fifo1_drive_cleared = 1;
@@ -6511,17 +6603,17 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word58__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word58__store42_word_value, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
-    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word56_shown;
-    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+    card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
+    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word70_shown[0] == 0));
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word58__store42_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word58__store42_word_value);
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word60__store42_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word60__store42_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
@@ -6530,17 +6622,17 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word70_shown[0], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word59__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word59__store43_word_value, card_core0_regs_fifo1_reg_word57_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
-    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word57_shown;
-    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+    card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
+    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word70_shown[0] == 1));
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word59__store43_word_strobe && (!card_core0_regs_fifo1_halt));
-        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word59__store43_word_value);
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word61__store43_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word61__store43_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
@@ -6553,7 +6645,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words
     if (reset == 0) begin
         card_core0_regs_fifo1_status_words1_done_flag <= 0;
         card_core0_regs_fifo1_status_words1_error_before <= 0;
-        card_core0_regs_fifo1_reg_word46_shown <= 0;
+        card_core0_regs_fifo1_reg_word48_shown <= 0;
         card_core0_regs_fifo1_status_words1_busy_before <= 0;
         card_core0_regs_fifo1_status_words1_low_before <= 0;
     end
@@ -6566,9 +6658,9 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_status_words
             card_core0_regs_fifo1_status_words1_done_flag <= 1;
         end
         card_core0_regs_fifo1_status_words1_error_before <= (card_core0_regs_fifo1_error_code != 0);
-        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown);
+        card_core0_regs_fifo1_status_words1_low_before <= (card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word47_shown);
         if (card_core0_regs_fifo1_sequencer1_mark_strobe) begin
-            card_core0_regs_fifo1_reg_word46_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
+            card_core0_regs_fifo1_reg_word48_shown <= card_core0_regs_fifo1_sequencer1_mark_tag;
         end
     end
 end
@@ -6585,50 +6677,52 @@ always @(card_core0_regs_fifo1_status_words1_done_flag, card_core0_regs_fifo1_er
     word[9] = card_core0_regs_fifo1_fifo_full;
     word[10] = card_core0_regs_fifo1_guard_stopped;
     word[32-1:16] = card_core0_regs_fifo1_level_wide;
-    card_core0_regs_fifo1_reg_word42_shown = word;
+    card_core0_regs_fifo1_reg_word44_shown = word;
 end
 
 
-always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word77_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
+always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word47_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word81_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (card_core0_regs_fifo1_status_words1_busy_before && (!card_core0_regs_fifo1_any_busy));
-    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
+    word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word47_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_status_words1_error_before));
     word[3] = card_core0_regs_fifo1_sequencer1_mark_strobe;
-    word[4] = card_core0_regs_fifo1_reg_word77_chain_out_clamped;
+    word[4] = card_core0_regs_fifo1_reg_word81_chain_out_clamped;
     word[5] = card_core0_regs_fifo1_guard_stop_event;
     word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
     word[7] = card_core0_regs_fifo1_homing1_port_ended;
-    card_core0_regs_fifo1_reg_word44__store31_word_hw = word;
+    card_core0_regs_fifo1_reg_word46__store31_word_hw = word;
 end
 
 
 
-assign irq = ((card_core0_regs_fifo1_reg_word44_shown & card_core0_regs_fifo1_reg_word43_shown) != 0);
+assign irq = ((card_core0_regs_fifo1_reg_word46_shown & card_core0_regs_fifo1_reg_word45_shown) != 0);
 
 
 always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1_status_words1_assemble_machine
     reg [20-1:0] word;
-    reg [8-1:0] why;
+    reg [16-1:0] why;
     word = 20'h0;
-    word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
-    word[8+:7] = card_core0_regs_fifo1_conditioning_active;
+    word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw[7-1:0];
+    word[8+:7] = card_core0_regs_fifo1_conditioning_active[7-1:0];
     word[16] = card_core0_regs_fifo1_guard_stopped;
     word[17] = pins_drive_enable;
     word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
-    card_core0_regs_fifo1_reg_word64_shown = word;
-    why = 8'h0;
+    card_core0_regs_fifo1_reg_word66_shown = word;
+    why = 16'h0;
     why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
     why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
-    card_core0_regs_fifo1_reg_word65_shown = why;
+    card_core0_regs_fifo1_reg_word67_shown = why;
+    card_core0_regs_fifo1_reg_word80_shown = card_core0_regs_fifo1_input_filter1_inputs_raw;
+    card_core0_regs_fifo1_reg_word81_shown = card_core0_regs_fifo1_conditioning_active;
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_shown = card_core0_regs_fifo1_pulse_out1_axis_x_position[32-1:0];
-assign card_core0_regs_fifo1_reg_word48_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
+assign card_core0_regs_fifo1_reg_word49_shown = card_core0_regs_fifo1_pulse_out1_axis_x_position[32-1:0];
+assign card_core0_regs_fifo1_reg_word50_shown = card_core0_regs_fifo1_pos_y_snapshot[32-1:0];
 
 
 always @(card_core0_regs_fifo1_sequencer1_dda_ys, card_core0_regs_fifo1_sequencer1_dda_ye, card_core0_regs_fifo1_sequencer1_dda_xs, card_core0_regs_fifo1_sequencer1_dda_xe) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_magnitudes

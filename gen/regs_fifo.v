@@ -188,6 +188,7 @@ reg [3:0] set_index;
 reg [31:0] set_value;
 reg [3:0] error_code;
 reg seq_load;
+reg [1:0] home_zero;
 reg [1:0] step_mode;
 reg signed [31:0] pos_y_snapshot;
 reg [23:0] watchdog_left;
@@ -210,8 +211,6 @@ wire [9:0] fifo_level;
 wire halt;
 wire hold;
 reg home_idle;
-reg [1:0] home_inputs;
-reg [1:0] home_zero;
 reg io_read;
 reg io_write;
 reg io_written;
@@ -492,7 +491,7 @@ wire reg_word25_mine;
 wire [31:0] reg_word25_shown_wide;
 reg [31:0] reg_word25_chain_out_data;
 wire reg_word25_chain_out_clamped;
-reg [7:0] reg_word26_shown;
+reg [15:0] reg_word26_shown;
 wire reg_word26_mine;
 wire [31:0] reg_word26_shown_wide;
 reg [31:0] reg_word26_chain_out_data;
@@ -541,18 +540,18 @@ reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
 reg reg_word30__store20_word_strobe;
 reg [23:0] reg_word30__store20_word_value;
-wire [1:0] reg_word31_honoured;
+wire [6:0] reg_word31_honoured;
 wire reg_word31_out_of_range;
-reg [1:0] reg_word31_shown;
+reg [6:0] reg_word31_shown;
 reg reg_word31_clamped;
 wire reg_word31_mine;
 wire reg_word31_mine_write;
 wire [31:0] reg_word31_shown_wide;
-wire [1:0] reg_word31_written;
+wire [6:0] reg_word31_written;
 reg [31:0] reg_word31_chain_out_data;
 wire reg_word31_chain_out_clamped;
 reg reg_word31__store21_word_strobe;
-reg [1:0] reg_word31__store21_word_value;
+reg [6:0] reg_word31__store21_word_value;
 reg [5:0] reg_word32_shown;
 wire reg_word32_mine;
 wire [31:0] reg_word32_shown_wide;
@@ -620,7 +619,17 @@ wire reg_word38_mine_write;
 wire reg_word38_set_mine;
 wire [31:0] reg_word38_shown_wide;
 reg [31:0] reg_word38_written;
+reg [31:0] reg_word38_chain_out_data;
 wire reg_word38_chain_out_clamped;
+reg [6:0] reg_word39_shown;
+wire reg_word39_mine;
+wire [31:0] reg_word39_shown_wide;
+reg [31:0] reg_word39_chain_out_data;
+wire reg_word39_chain_out_clamped;
+reg [6:0] reg_word40_shown;
+wire reg_word40_mine;
+wire [31:0] reg_word40_shown_wide;
+wire reg_word40_chain_out_clamped;
 wire sequencer0_arriving_coord_fits;
 wire sequencer0_arriving_count_fits;
 reg sequencer0_bad_axes;
@@ -800,8 +809,13 @@ wire machine_guard0_grant_x_granted_step;
 wire machine_guard0_grant_x_granted_dir;
 wire machine_guard0_grant_y_granted_step;
 wire machine_guard0_grant_y_granted_dir;
+wire machine_guard0_limit_x_hit_pos;
+wire machine_guard0_limit_x_hit_neg;
+wire machine_guard0_limit_y_hit_pos;
+wire machine_guard0_limit_y_hit_neg;
 reg [23:0] homing0_addend;
-reg homing0_axis;
+reg [2:0] homing0_asked;
+reg [2:0] homing0_axis;
 reg homing0_done;
 reg homing0_finished;
 reg homing0_gave_up;
@@ -816,8 +830,11 @@ reg homing0_refused;
 reg homing0_seek_next;
 reg homing0_seeking;
 wire [23:0] homing0_signed_count;
+wire [0:0] homing0_slot;
 reg [2:0] homing0_state;
 reg homing0_switch;
+reg homing0_valid;
+wire [1:0] homing0_port_home;
 reg homing0_port_load;
 reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
@@ -831,7 +848,7 @@ reg status_words0_low_before;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037442;
+assign reg_word0_shown = 32'd3719037443;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -887,6 +904,12 @@ assign input_filter0_inputs_pins[3] = pins_limit_pos_y;
 assign input_filter0_inputs_pins[2] = pins_limit_neg_x;
 assign input_filter0_inputs_pins[1] = pins_limit_pos_x;
 assign input_filter0_inputs_pins[0] = pins_estop;
+assign machine_guard0_hits[3] = machine_guard0_limit_y_hit_neg;
+assign machine_guard0_hits[2] = machine_guard0_limit_y_hit_pos;
+assign machine_guard0_hits[1] = machine_guard0_limit_x_hit_neg;
+assign machine_guard0_hits[0] = machine_guard0_limit_x_hit_pos;
+assign homing0_port_home[1] = conditioning_active[6];
+assign homing0_port_home[0] = conditioning_active[5];
 
 
 
@@ -2223,7 +2246,7 @@ end
 
 
 
-assign reg_word26_shown_wide = {24'h0, reg_word26_shown};
+assign reg_word26_shown_wide = {16'h0, reg_word26_shown};
 
 
 
@@ -2492,7 +2515,7 @@ end
 
 
 
-assign reg_word31_shown_wide = {30'h0, reg_word31_shown};
+assign reg_word31_shown_wide = {25'h0, reg_word31_shown};
 
 
 
@@ -2500,11 +2523,11 @@ assign reg_word31_mine_write = (written_addr == 124);
 
 
 
-assign reg_word31_written = (written_data[2-1:0] & written_mask[2-1:0]);
+assign reg_word31_written = (written_data[7-1:0] & written_mask[7-1:0]);
 
 
 
-assign reg_word31_honoured = reg_word31_written[2-1:0];
+assign reg_word31_honoured = reg_word31_written[7-1:0];
 
 
 
@@ -2884,10 +2907,10 @@ assign reg_word38_mine = (local_addr == 152);
 
 always @(reg_word38_mine, reg_word38_shown_wide, reg_word37_chain_out_data) begin: reg_word38_read_chain
     if (reg_word38_mine) begin
-        read_end = (reg_word37_chain_out_data | reg_word38_shown_wide);
+        reg_word38_chain_out_data = (reg_word37_chain_out_data | reg_word38_shown_wide);
     end
     else begin
-        read_end = reg_word37_chain_out_data;
+        reg_word38_chain_out_data = reg_word37_chain_out_data;
     end
 end
 
@@ -2939,6 +2962,50 @@ always @(posedge clock, negedge reset) begin: reg_word38__store27_hold_rw
         end
     end
 end
+
+
+
+assign reg_word39_mine = (local_addr == 156);
+
+
+always @(reg_word39_mine, reg_word39_shown_wide, reg_word38_chain_out_data) begin: reg_word39_read_chain
+    if (reg_word39_mine) begin
+        reg_word39_chain_out_data = (reg_word38_chain_out_data | reg_word39_shown_wide);
+    end
+    else begin
+        reg_word39_chain_out_data = reg_word38_chain_out_data;
+    end
+end
+
+
+
+assign reg_word39_shown_wide = {25'h0, reg_word39_shown};
+
+
+
+assign reg_word39_chain_out_clamped = reg_word38_chain_out_clamped;
+
+
+
+assign reg_word40_mine = (local_addr == 160);
+
+
+always @(reg_word40_mine, reg_word40_shown_wide, reg_word39_chain_out_data) begin: reg_word40_read_chain
+    if (reg_word40_mine) begin
+        read_end = (reg_word39_chain_out_data | reg_word40_shown_wide);
+    end
+    else begin
+        read_end = reg_word39_chain_out_data;
+    end
+end
+
+
+
+assign reg_word40_shown_wide = {25'h0, reg_word40_shown};
+
+
+
+assign reg_word40_chain_out_clamped = reg_word39_chain_out_clamped;
 
 
 
@@ -4597,9 +4664,18 @@ assign machine_guard0_grant_y_granted_dir = requests_dir_y;
 
 
 
+assign machine_guard0_limit_x_hit_pos = (requests_step_x && requests_dir_x && conditioning_active[1]);
+assign machine_guard0_limit_x_hit_neg = (requests_step_x && (!requests_dir_x) && conditioning_active[2]);
+
+
+
+assign machine_guard0_limit_y_hit_pos = (requests_step_y && requests_dir_y && conditioning_active[3]);
+assign machine_guard0_limit_y_hit_neg = (requests_step_y && (!requests_dir_y) && conditioning_active[4]);
+
+
+
 assign machine_guard0_estop = conditioning_active[0];
 assign machine_guard0_expired = ((watchdog_left == 1) && (!reg_word30__store20_word_strobe));
-assign machine_guard0_hits = {(requests_step_y && (!requests_dir_y) && conditioning_active[4]), (requests_step_y && requests_dir_y && conditioning_active[3]), (requests_step_x && (!requests_dir_x) && conditioning_active[2]), (requests_step_x && requests_dir_x && conditioning_active[1])};
 
 
 
@@ -4673,8 +4749,27 @@ always @(posedge clock, negedge reset) begin: machine_guard0_watchdog
 end
 
 
-always @(reg_word36_shown, reg_word35_shown, home_inputs, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
-    homing0_switch = homing0_axis ? home_inputs[1] : home_inputs[0];
+always @(reg_word31__store21_word_value) begin: homing0_ask
+    if ((reg_word31__store21_word_value[7-1:4] != 0)) begin
+        homing0_asked = reg_word31__store21_word_value[7-1:4];
+        homing0_valid = (reg_word31__store21_word_value[7-1:4] < 2);
+    end
+    else begin
+        homing0_asked = {2'h0, reg_word31__store21_word_value[0]};
+        homing0_valid = 1'b1;
+    end
+end
+
+
+
+assign homing0_slot = homing0_axis[1-1:0];
+
+
+always @(reg_word36_shown, homing0_slot, reg_word35_shown, homing0_port_home, homing0_axis, homing0_switch, homing0_state) begin: homing0_select
+    homing0_switch = 0;
+    if ((homing0_axis < 2)) begin
+        homing0_switch = homing0_port_home[homing0_slot];
+    end
     homing0_seeking = ((homing0_state == 3'b001) || (homing0_state == 3'b010));
     homing0_seek_next = ((homing0_state == 3'b000) || (homing0_state == 3'b001) || ((homing0_state == 3'b010) && (!homing0_switch)));
     if (((homing0_state == 3'b011) || (homing0_state == 3'b100))) begin
@@ -4731,9 +4826,10 @@ always @(posedge clock, negedge reset) begin: homing0_next_load
 end
 
 
-always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
+always @(homing0_slot, out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
     reg drained;
     reg released;
+    reg [2-1:0] zero;
     drained = ((!pulse_busy) && (!out_active));
     released = ((homing0_state == 3'b100) && (!homing0_switch));
     homing0_opened = released;
@@ -4741,15 +4837,11 @@ always @(out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) be
     homing0_finished = ((homing0_state == 3'b110) && (!out_active));
     home_cut = ((homing0_state == 3'b010) && homing0_switch);
     homing0_port_retarget = released;
-    home_zero = 0;
-    if (released) begin
-        if (homing0_axis) begin
-            home_zero = 2;
-        end
-        else begin
-            home_zero = 1;
-        end
+    zero = 2'h0;
+    if ((released && (homing0_axis < 2))) begin
+        zero[homing0_slot] = 1;
     end
+    home_zero = zero;
 end
 
 
@@ -4770,12 +4862,13 @@ end
 
 
 always @(homing0_negative, homing0_phase, homing0_done, homing0_refused, reg_word31__store21_word_strobe, homing0_axis, homing0_state, homing0_not_found) begin: homing0_show
-    reg [2-1:0] asked;
+    reg [7-1:0] taken;
     reg [6-1:0] word;
-    asked = 2'h0;
-    asked[0] = homing0_axis;
-    asked[1] = homing0_negative;
-    reg_word31_shown = asked;
+    taken = 7'h0;
+    taken[0] = homing0_axis[0];
+    taken[1] = homing0_negative;
+    taken[7-1:4] = homing0_axis;
+    reg_word31_shown = taken;
     word = 6'h0;
     word[0] = ((homing0_state != 3'b000) || reg_word31__store21_word_strobe);
     word[1] = homing0_done;
@@ -4807,12 +4900,12 @@ always @(posedge clock, negedge reset) begin: homing0_outcome
         end
         else if ((homing0_state == 3'b000)) begin
             if (reg_word31__store21_word_strobe) begin
-                homing0_axis <= reg_word31__store21_word_value[0];
+                homing0_axis <= homing0_asked;
                 homing0_negative <= reg_word31__store21_word_value[1];
                 homing0_done <= 0;
                 homing0_not_found <= 0;
-                homing0_refused <= (!home_idle);
-                homing0_port_ended <= (!home_idle);
+                homing0_refused <= ((!home_idle) || (!homing0_valid));
+                homing0_port_ended <= ((!home_idle) || (!homing0_valid));
             end
         end
         else begin
@@ -4842,7 +4935,7 @@ always @(posedge clock, negedge reset) begin: homing0_sequence
             homing0_state <= 3'b000;
         end
         else if ((homing0_state == 3'b000)) begin
-            if ((reg_word31__store21_word_strobe && home_idle)) begin
+            if ((reg_word31__store21_word_strobe && home_idle && homing0_valid)) begin
                 homing0_state <= 3'b001;
             end
         end
@@ -4953,7 +5046,6 @@ always @(feed_held, fifo_empty, out_ready, core_clear, guard_stopped, command, a
     sequencer_clear = (core_clear || guard_stopped);
     home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
     direct_clear = (core_clear || home_cut);
-    home_inputs = conditioning_active[5+:2];
     drive_cleared = 0;
     if (guard_stopped) begin
         drive_cleared = 1;
@@ -5008,11 +5100,11 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
-    direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 0));
+    direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
-        direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[0] == 0));
+        direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 0));
         direct_pulse0_command_count = homing0_port_count;
         direct_pulse0_command_period = homing0_port_period;
     end
@@ -5027,11 +5119,11 @@ always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarge
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[0], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
-    direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[0] == 1));
+    direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
-        direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[0] == 1));
+        direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 1));
         direct_pulse1_command_count = homing0_port_count;
         direct_pulse1_command_period = homing0_port_period;
     end
@@ -5086,14 +5178,14 @@ always @(status_words0_done_flag, error_code, guard_stopped, any_busy, level_wid
 end
 
 
-always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word38_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
+always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word40_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (status_words0_busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_shown) && (!status_words0_low_before));
     word[2] = ((error_code != 0) && (!status_words0_error_before));
     word[3] = sequencer0_mark_strobe;
-    word[4] = reg_word38_chain_out_clamped;
+    word[4] = reg_word40_chain_out_clamped;
     word[5] = guard_stop_event;
     word[6] = input_filter0_inputs_changed;
     word[7] = homing0_port_ended;
@@ -5107,19 +5199,21 @@ assign irq = ((reg_word5_shown & reg_word4_shown) != 0);
 
 always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: status_words0_assemble_machine
     reg [20-1:0] word;
-    reg [8-1:0] why;
+    reg [16-1:0] why;
     word = 20'h0;
-    word[0+:7] = input_filter0_inputs_raw;
-    word[8+:7] = conditioning_active;
+    word[0+:7] = input_filter0_inputs_raw[7-1:0];
+    word[8+:7] = conditioning_active[7-1:0];
     word[16] = guard_stopped;
     word[17] = pins_drive_enable;
     word[18] = settled;
     word[19] = guard_stopping;
     reg_word25_shown = word;
-    why = 8'h0;
+    why = 16'h0;
     why[0+:2] = machine_guard0_guard_reason;
     why[4+:4] = machine_guard0_guard_limits;
     reg_word26_shown = why;
+    reg_word39_shown = input_filter0_inputs_raw;
+    reg_word40_shown = conditioning_active;
 end
 
 

@@ -292,6 +292,7 @@ reg [3:0] card1_card_core1_regs_fifo2_set_index;
 reg [31:0] card1_card_core1_regs_fifo2_set_value;
 reg [3:0] card1_card_core1_regs_fifo2_error_code;
 reg card1_card_core1_regs_fifo2_seq_load;
+reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg [1:0] card1_card_core1_regs_fifo2_step_mode;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
@@ -314,8 +315,6 @@ wire [9:0] card1_card_core1_regs_fifo2_fifo_level;
 wire card1_card_core1_regs_fifo2_halt;
 wire card1_card_core1_regs_fifo2_hold;
 reg card1_card_core1_regs_fifo2_home_idle;
-reg [1:0] card1_card_core1_regs_fifo2_home_inputs;
-reg [1:0] card1_card_core1_regs_fifo2_home_zero;
 reg card1_card_core1_regs_fifo2_io_read;
 reg card1_card_core1_regs_fifo2_io_write;
 reg card1_card_core1_regs_fifo2_io_written;
@@ -380,126 +379,87 @@ wire card1_card_core1_regs_fifo2_sync_fifo2_last_beyond;
 wire card1_card_core1_regs_fifo2_sync_fifo2_one_word;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_read_addr;
 reg [8:0] card1_card_core1_regs_fifo2_sync_fifo2_write_addr;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown;
-wire card1_card_core1_regs_fifo2_reg_word78_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word78_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word78_chain_in_data;
-wire card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped;
-wire card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word79_honoured;
-wire card1_card_core1_regs_fifo2_reg_word79_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word79_clamped;
-wire card1_card_core1_regs_fifo2_reg_word79_mine;
-wire card1_card_core1_regs_fifo2_reg_word79_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word79_set_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word79_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word79_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word80_honoured;
-wire card1_card_core1_regs_fifo2_reg_word80_out_of_range;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word80_shown;
-reg card1_card_core1_regs_fifo2_reg_word80_clamped;
-wire card1_card_core1_regs_fifo2_reg_word80_mine;
-wire card1_card_core1_regs_fifo2_reg_word80_mine_write;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word80_shown_wide;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word80_written;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word81_shown;
-wire card1_card_core1_regs_fifo2_reg_word81_mine;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word81_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
-wire card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word82_honoured;
-wire card1_card_core1_regs_fifo2_reg_word82_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word82_shown;
-reg card1_card_core1_regs_fifo2_reg_word82_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown;
 wire card1_card_core1_regs_fifo2_reg_word82_mine;
-wire card1_card_core1_regs_fifo2_reg_word82_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word82_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word82_shown_wide;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word82_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word82_chain_out_data;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word82_chain_in_data;
 wire card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word83_honoured;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word83_shown;
+wire card1_card_core1_regs_fifo2_reg_word82_chain_in_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word83_honoured;
+wire card1_card_core1_regs_fifo2_reg_word83_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word83_clamped;
 wire card1_card_core1_regs_fifo2_reg_word83_mine;
 wire card1_card_core1_regs_fifo2_reg_word83_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word83_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word83_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word83_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word83__store59_word_hw;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
-reg card1_card_core1_regs_fifo2_reg_word84_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word84_shown;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
+wire card1_card_core1_regs_fifo2_reg_word84_out_of_range;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word84_shown;
 reg card1_card_core1_regs_fifo2_reg_word84_clamped;
 wire card1_card_core1_regs_fifo2_reg_word84_mine;
 wire card1_card_core1_regs_fifo2_reg_word84_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word84_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word84_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word84_written;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word84_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word85_shown;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word85_shown;
 wire card1_card_core1_regs_fifo2_reg_word85_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
+wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word86_shown;
+reg card1_card_core1_regs_fifo2_reg_word86_clamped;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
+wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word87_shown;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
+wire card1_card_core1_regs_fifo2_reg_word87_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word87__store59_word_hw;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
 reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_shown;
 reg card1_card_core1_regs_fifo2_reg_word88_clamped;
 wire card1_card_core1_regs_fifo2_reg_word88_mine;
 wire card1_card_core1_regs_fifo2_reg_word88_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word88_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word89_honoured;
-reg card1_card_core1_regs_fifo2_reg_word89_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word89_shown;
-reg card1_card_core1_regs_fifo2_reg_word89_clamped;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
-wire card1_card_core1_regs_fifo2_reg_word89_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word89_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word90_honoured;
-reg card1_card_core1_regs_fifo2_reg_word90_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word90_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown;
 wire card1_card_core1_regs_fifo2_reg_word90_mine;
-wire card1_card_core1_regs_fifo2_reg_word90_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word90_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word91_honoured;
-reg card1_card_core1_regs_fifo2_reg_word91_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word91_shown;
-reg card1_card_core1_regs_fifo2_reg_word91_clamped;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown;
 wire card1_card_core1_regs_fifo2_reg_word91_mine;
-wire card1_card_core1_regs_fifo2_reg_word91_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word91_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
 reg card1_card_core1_regs_fifo2_reg_word92_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word92_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word92_shown;
 reg card1_card_core1_regs_fifo2_reg_word92_clamped;
 wire card1_card_core1_regs_fifo2_reg_word92_mine;
 wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
@@ -507,9 +467,9 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
 reg card1_card_core1_regs_fifo2_reg_word93_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word93_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word93_shown;
 reg card1_card_core1_regs_fifo2_reg_word93_clamped;
 wire card1_card_core1_regs_fifo2_reg_word93_mine;
 wire card1_card_core1_regs_fifo2_reg_word93_mine_write;
@@ -517,20 +477,18 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
-wire [5:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
-wire card1_card_core1_regs_fifo2_reg_word94_out_of_range;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word94_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
+reg card1_card_core1_regs_fifo2_reg_word94_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word94_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
 reg card1_card_core1_regs_fifo2_reg_word95_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word95_shown;
 reg card1_card_core1_regs_fifo2_reg_word95_clamped;
 wire card1_card_core1_regs_fifo2_reg_word95_mine;
 wire card1_card_core1_regs_fifo2_reg_word95_mine_write;
@@ -538,9 +496,9 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word95_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word96_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word96_honoured;
 reg card1_card_core1_regs_fifo2_reg_word96_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word96_shown;
 reg card1_card_core1_regs_fifo2_reg_word96_clamped;
 wire card1_card_core1_regs_fifo2_reg_word96_mine;
 wire card1_card_core1_regs_fifo2_reg_word96_mine_write;
@@ -548,124 +506,126 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word96_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word96_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word97_honoured;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word97_honoured;
 reg card1_card_core1_regs_fifo2_reg_word97_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word97_shown;
 reg card1_card_core1_regs_fifo2_reg_word97_clamped;
 wire card1_card_core1_regs_fifo2_reg_word97_mine;
 wire card1_card_core1_regs_fifo2_reg_word97_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word97_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word97_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word97_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word97__store70_word_value;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
-reg card1_card_core1_regs_fifo2_reg_word98_out_of_range;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word98_shown;
+wire [5:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
+wire card1_card_core1_regs_fifo2_reg_word98_out_of_range;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word98_shown;
 reg card1_card_core1_regs_fifo2_reg_word98_clamped;
 wire card1_card_core1_regs_fifo2_reg_word98_mine;
 wire card1_card_core1_regs_fifo2_reg_word98_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word98_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word98_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word98_written;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word98_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word98__store71_word_value;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word99_honoured;
+reg card1_card_core1_regs_fifo2_reg_word99_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word99_shown;
+reg card1_card_core1_regs_fifo2_reg_word99_clamped;
 wire card1_card_core1_regs_fifo2_reg_word99_mine;
+wire card1_card_core1_regs_fifo2_reg_word99_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word99_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
-wire [15:0] card1_card_core1_regs_fifo2_reg_word100_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word100_honoured;
+reg card1_card_core1_regs_fifo2_reg_word100_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word100_shown;
+reg card1_card_core1_regs_fifo2_reg_word100_clamped;
 wire card1_card_core1_regs_fifo2_reg_word100_mine;
+wire card1_card_core1_regs_fifo2_reg_word100_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word100_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word100_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word101_shown;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word101_honoured;
+reg card1_card_core1_regs_fifo2_reg_word101_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word101_shown;
+reg card1_card_core1_regs_fifo2_reg_word101_clamped;
 wire card1_card_core1_regs_fifo2_reg_word101_mine;
+wire card1_card_core1_regs_fifo2_reg_word101_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word101_shown_wide;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word101_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
-wire card1_card_core1_regs_fifo2_reg_word102_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word101__store70_word_value;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
+reg card1_card_core1_regs_fifo2_reg_word102_out_of_range;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word102_shown;
 reg card1_card_core1_regs_fifo2_reg_word102_clamped;
 wire card1_card_core1_regs_fifo2_reg_word102_mine;
 wire card1_card_core1_regs_fifo2_reg_word102_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word102_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word102_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word102_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word102_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
-reg [19:0] card1_card_core1_regs_fifo2_reg_word103_shown;
+reg card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word102__store71_word_value;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown;
 wire card1_card_core1_regs_fifo2_reg_word103_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word103_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word104_shown;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word104_shown;
 wire card1_card_core1_regs_fifo2_reg_word104_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word104_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word105_honoured;
-wire card1_card_core1_regs_fifo2_reg_word105_out_of_range;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word105_shown;
-reg card1_card_core1_regs_fifo2_reg_word105_clamped;
+wire [27:0] card1_card_core1_regs_fifo2_reg_word105_shown;
 wire card1_card_core1_regs_fifo2_reg_word105_mine;
-wire card1_card_core1_regs_fifo2_reg_word105_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word105_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word105_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word105_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word105_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word106_honoured;
-reg card1_card_core1_regs_fifo2_reg_word106_out_of_range;
-reg [3:0] card1_card_core1_regs_fifo2_reg_word106_shown;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word106_honoured;
+wire card1_card_core1_regs_fifo2_reg_word106_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word106_clamped;
 wire card1_card_core1_regs_fifo2_reg_word106_mine;
 wire card1_card_core1_regs_fifo2_reg_word106_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word106_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word106_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word106_written;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word106_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word107_honoured;
-reg card1_card_core1_regs_fifo2_reg_word107_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word107_shown;
-reg card1_card_core1_regs_fifo2_reg_word107_clamped;
+reg [19:0] card1_card_core1_regs_fifo2_reg_word107_shown;
 wire card1_card_core1_regs_fifo2_reg_word107_mine;
-wire card1_card_core1_regs_fifo2_reg_word107_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word107_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word107_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word107_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word107_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word108_honoured;
-reg card1_card_core1_regs_fifo2_reg_word108_out_of_range;
-reg card1_card_core1_regs_fifo2_reg_word108_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word108_shown;
 wire card1_card_core1_regs_fifo2_reg_word108_mine;
-wire card1_card_core1_regs_fifo2_reg_word108_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word108_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word108_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe;
-reg [23:0] card1_card_core1_regs_fifo2_reg_word108__store76_word_value;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
 wire card1_card_core1_regs_fifo2_reg_word109_out_of_range;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word109_shown;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word109_shown;
 reg card1_card_core1_regs_fifo2_reg_word109_clamped;
 wire card1_card_core1_regs_fifo2_reg_word109_mine;
 wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
-wire [1:0] card1_card_core1_regs_fifo2_reg_word109_written;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word109_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
-reg card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word109__store77_word_value;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word110_shown;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
+reg card1_card_core1_regs_fifo2_reg_word110_out_of_range;
+reg [3:0] card1_card_core1_regs_fifo2_reg_word110_shown;
+reg card1_card_core1_regs_fifo2_reg_word110_clamped;
 wire card1_card_core1_regs_fifo2_reg_word110_mine;
+wire card1_card_core1_regs_fifo2_reg_word110_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word110_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word110_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word110_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word111_honoured;
@@ -679,58 +639,107 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word111_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word111_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word112_honoured;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word112_honoured;
 reg card1_card_core1_regs_fifo2_reg_word112_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word112_shown;
 reg card1_card_core1_regs_fifo2_reg_word112_clamped;
 wire card1_card_core1_regs_fifo2_reg_word112_mine;
 wire card1_card_core1_regs_fifo2_reg_word112_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word112_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word112_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word112_written;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word112_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
-reg card1_card_core1_regs_fifo2_reg_word113_out_of_range;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word113_shown;
+reg card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe;
+reg [23:0] card1_card_core1_regs_fifo2_reg_word112__store76_word_value;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
+wire card1_card_core1_regs_fifo2_reg_word113_out_of_range;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word113_shown;
 reg card1_card_core1_regs_fifo2_reg_word113_clamped;
 wire card1_card_core1_regs_fifo2_reg_word113_mine;
 wire card1_card_core1_regs_fifo2_reg_word113_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word113_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word113_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word113_written;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word113_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped;
-reg [22:0] card1_card_core1_regs_fifo2_reg_word114_honoured;
-reg card1_card_core1_regs_fifo2_reg_word114_out_of_range;
-reg [22:0] card1_card_core1_regs_fifo2_reg_word114_shown;
-reg card1_card_core1_regs_fifo2_reg_word114_clamped;
+reg card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word113__store77_word_value;
+reg [5:0] card1_card_core1_regs_fifo2_reg_word114_shown;
 wire card1_card_core1_regs_fifo2_reg_word114_mine;
-wire card1_card_core1_regs_fifo2_reg_word114_mine_write;
-wire card1_card_core1_regs_fifo2_reg_word114_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word114_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word114_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word115_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word115_honoured;
 reg card1_card_core1_regs_fifo2_reg_word115_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word115_shown;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word115_shown;
 reg card1_card_core1_regs_fifo2_reg_word115_clamped;
 wire card1_card_core1_regs_fifo2_reg_word115_mine;
 wire card1_card_core1_regs_fifo2_reg_word115_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word115_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word115_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word115_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
 reg card1_card_core1_regs_fifo2_reg_word116_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word116_shown;
 reg card1_card_core1_regs_fifo2_reg_word116_clamped;
 wire card1_card_core1_regs_fifo2_reg_word116_mine;
 wire card1_card_core1_regs_fifo2_reg_word116_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word116_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word116_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word116_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word116_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word117_honoured;
+reg card1_card_core1_regs_fifo2_reg_word117_out_of_range;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word117_shown;
+reg card1_card_core1_regs_fifo2_reg_word117_clamped;
+wire card1_card_core1_regs_fifo2_reg_word117_mine;
+wire card1_card_core1_regs_fifo2_reg_word117_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word117_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word117_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word117_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word117_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word117_chain_out_clamped;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word118_honoured;
+reg card1_card_core1_regs_fifo2_reg_word118_out_of_range;
+reg [22:0] card1_card_core1_regs_fifo2_reg_word118_shown;
+reg card1_card_core1_regs_fifo2_reg_word118_clamped;
+wire card1_card_core1_regs_fifo2_reg_word118_mine;
+wire card1_card_core1_regs_fifo2_reg_word118_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word118_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word118_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word118_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word118_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word118_chain_out_clamped;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word119_honoured;
+reg card1_card_core1_regs_fifo2_reg_word119_out_of_range;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word119_shown;
+reg card1_card_core1_regs_fifo2_reg_word119_clamped;
+wire card1_card_core1_regs_fifo2_reg_word119_mine;
+wire card1_card_core1_regs_fifo2_reg_word119_mine_write;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word119_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word119_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word119_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word119_chain_out_clamped;
+reg [1:0] card1_card_core1_regs_fifo2_reg_word120_honoured;
+reg card1_card_core1_regs_fifo2_reg_word120_out_of_range;
+reg card1_card_core1_regs_fifo2_reg_word120_clamped;
+wire card1_card_core1_regs_fifo2_reg_word120_mine;
+wire card1_card_core1_regs_fifo2_reg_word120_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word120_set_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word120_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word120_written;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word120_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word120_chain_out_clamped;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word121_shown;
+wire card1_card_core1_regs_fifo2_reg_word121_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word121_shown_wide;
+reg [31:0] card1_card_core1_regs_fifo2_reg_word121_chain_out_data;
+wire card1_card_core1_regs_fifo2_reg_word121_chain_out_clamped;
+reg [6:0] card1_card_core1_regs_fifo2_reg_word122_shown;
+wire card1_card_core1_regs_fifo2_reg_word122_mine;
+wire [31:0] card1_card_core1_regs_fifo2_reg_word122_shown_wide;
+wire card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits;
 wire card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_axes;
@@ -927,8 +936,13 @@ wire card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_step;
 wire card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_dir;
 wire card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_step;
 wire card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_dir;
+wire card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_pos;
+wire card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_neg;
+wire card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_pos;
+wire card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_neg;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_addend;
-reg card1_card_core1_regs_fifo2_homing2_axis;
+reg [2:0] card1_card_core1_regs_fifo2_homing2_asked;
+reg [2:0] card1_card_core1_regs_fifo2_homing2_axis;
 reg card1_card_core1_regs_fifo2_homing2_done;
 reg card1_card_core1_regs_fifo2_homing2_finished;
 reg card1_card_core1_regs_fifo2_homing2_gave_up;
@@ -943,8 +957,11 @@ reg card1_card_core1_regs_fifo2_homing2_refused;
 reg card1_card_core1_regs_fifo2_homing2_seek_next;
 reg card1_card_core1_regs_fifo2_homing2_seeking;
 wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
+wire [0:0] card1_card_core1_regs_fifo2_homing2_slot;
 reg [2:0] card1_card_core1_regs_fifo2_homing2_state;
 reg card1_card_core1_regs_fifo2_homing2_switch;
+reg card1_card_core1_regs_fifo2_homing2_valid;
+wire [1:0] card1_card_core1_regs_fifo2_homing2_port_home;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
@@ -1136,33 +1153,33 @@ reg [0:0] card1_card_core1_dda_axes1__plane_queue1_v_next;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word78_shown = 32'd3719037442;
-assign card1_card_core1_regs_fifo2_reg_word78_chain_in_data = 32'd0;
-assign card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word79_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word79_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word80_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word80_shown = 4'd0;
-assign card1_card_core1_regs_fifo2_reg_word82_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word82_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word84_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word94_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word99_shown = 32'd33333333;
-assign card1_card_core1_regs_fifo2_reg_word100_shown = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word101_shown = 28'd17564184;
-assign card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word102_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word105_out_of_range = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word105_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word82_shown = 32'd3719037443;
+assign card1_card_core1_regs_fifo2_reg_word82_chain_in_data = 32'd0;
+assign card1_card_core1_regs_fifo2_reg_word82_chain_in_clamped = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word83_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word83_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word84_shown = 4'd0;
+assign card1_card_core1_regs_fifo2_reg_word86_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word86_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word88_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word98_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word103_shown = 32'd33333333;
+assign card1_card_core1_regs_fifo2_reg_word104_shown = 16'd512;
+assign card1_card_core1_regs_fifo2_reg_word105_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word106_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word107_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word109_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word110_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word111_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word112_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word113_set_mine = 1'd0;
-assign card1_card_core1_regs_fifo2_reg_word114_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word113_out_of_range = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word115_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word117_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word118_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_reg_word120_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_pulse_source4_pulses_mask = 2'd3;
 
 
@@ -1234,6 +1251,12 @@ assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[3] = motor_limit_po
 assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[2] = motor_limit_neg_x;
 assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[1] = motor_limit_pos_x;
 assign card1_card_core1_regs_fifo2_input_filter2_inputs_pins[0] = motor_estop;
+assign card1_card_core1_regs_fifo2_machine_guard2_hits[3] = card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_neg;
+assign card1_card_core1_regs_fifo2_machine_guard2_hits[2] = card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_pos;
+assign card1_card_core1_regs_fifo2_machine_guard2_hits[1] = card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_neg;
+assign card1_card_core1_regs_fifo2_machine_guard2_hits[0] = card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_pos;
+assign card1_card_core1_regs_fifo2_homing2_port_home[1] = card1_card_core1_regs_fifo2_conditioning_active[6];
+assign card1_card_core1_regs_fifo2_homing2_port_home[0] = card1_card_core1_regs_fifo2_conditioning_active[5];
 
 
 assign pci_pins_serr = pci_pads0_tristate_pad0_enable ? pci_pads0_tristate_pad0_to_pin : {1{1'bz}};
@@ -3305,213 +3328,29 @@ assign card1_pci_slave2_pci_control2_control_case0_0_1_target_room = card1_card_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word78_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
+assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 0);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word78_mine, card1_card_core1_regs_fifo2_reg_word78_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word78_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word78_mine) begin
-        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = (card1_card_core1_regs_fifo2_reg_word78_chain_in_data | card1_card_core1_regs_fifo2_reg_word78_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word78_chain_out_data = card1_card_core1_regs_fifo2_reg_word78_chain_in_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_shown_wide = card1_card_core1_regs_fifo2_reg_word78_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word78_chain_in_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word79_mine, card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word78_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word79_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word79_mine) begin
-        card1_card_core1_regs_fifo2_reg_word79_chain_out_data = (card1_card_core1_regs_fifo2_reg_word78_chain_out_data | card1_card_core1_regs_fifo2_reg_word79_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word79_chain_out_data = card1_card_core1_regs_fifo2_reg_word78_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word79_shown_wide, card1_card_core1_regs_fifo2_reg_word79_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word79_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word79_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word79_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word79_written = ((card1_card_core1_regs_fifo2_reg_word79_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_honoured = card1_card_core1_regs_fifo2_reg_word79_written[2-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word78_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word79_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word79__store56_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_control <= 0;
-        card1_card_core1_regs_fifo2_reg_word79_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word79_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word79_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word79_mine_write))) begin
-            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word79_honoured;
-            card1_card_core1_regs_fifo2_reg_word79_clamped <= card1_card_core1_regs_fifo2_reg_word79_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word80_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word80_mine, card1_card_core1_regs_fifo2_reg_word80_shown_wide, card1_card_core1_regs_fifo2_reg_word79_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word80_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word80_mine) begin
-        card1_card_core1_regs_fifo2_reg_word80_chain_out_data = (card1_card_core1_regs_fifo2_reg_word79_chain_out_data | card1_card_core1_regs_fifo2_reg_word80_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word80_chain_out_data = card1_card_core1_regs_fifo2_reg_word79_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word80_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word80_shown};
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word80_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word80_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word80_honoured = card1_card_core1_regs_fifo2_reg_word80_written[4-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word79_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word80_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word80__store57_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_command_strobe <= 0;
-        card1_card_core1_regs_fifo2_command <= 0;
-        card1_card_core1_regs_fifo2_reg_word80_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word80_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word80_mine_write)) begin
-            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word80_honoured;
-            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word80_clamped <= card1_card_core1_regs_fifo2_reg_word80_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word81_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word81_mine, card1_card_core1_regs_fifo2_reg_word81_shown_wide, card1_card_core1_regs_fifo2_reg_word80_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word81_read_chain
-    if (card1_card_core1_regs_fifo2_reg_word81_mine) begin
-        card1_card_core1_regs_fifo2_reg_word81_chain_out_data = (card1_card_core1_regs_fifo2_reg_word80_chain_out_data | card1_card_core1_regs_fifo2_reg_word81_shown_wide);
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word81_chain_out_data = card1_card_core1_regs_fifo2_reg_word80_chain_out_data;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word81_shown_wide = card1_card_core1_regs_fifo2_reg_word81_shown;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word80_chain_out_clamped;
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word82_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word81_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
+always @(card1_card_core1_regs_fifo2_reg_word82_mine, card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_in_data) begin: card1_card_core1_regs_fifo2_reg_word82_read_chain
     if (card1_card_core1_regs_fifo2_reg_word82_mine) begin
-        card1_card_core1_regs_fifo2_reg_word82_chain_out_data = (card1_card_core1_regs_fifo2_reg_word81_chain_out_data | card1_card_core1_regs_fifo2_reg_word82_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word82_chain_out_data = (card1_card_core1_regs_fifo2_reg_word82_chain_in_data | card1_card_core1_regs_fifo2_reg_word82_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word82_chain_out_data = card1_card_core1_regs_fifo2_reg_word81_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word82_chain_out_data = card1_card_core1_regs_fifo2_reg_word82_chain_in_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word82_shown};
+assign card1_card_core1_regs_fifo2_reg_word82_shown_wide = card1_card_core1_regs_fifo2_reg_word82_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word82_shown_wide, card1_card_core1_regs_fifo2_reg_word82_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word82_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word82_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word82_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word82_written = ((card1_card_core1_regs_fifo2_reg_word82_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word82_chain_in_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word82_honoured = card1_card_core1_regs_fifo2_reg_word82_written[8-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word81_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word82_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word82__store58_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word82_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word82_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word82_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word82_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word82_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word82_shown <= card1_card_core1_regs_fifo2_reg_word82_honoured;
-            card1_card_core1_regs_fifo2_reg_word82_clamped <= card1_card_core1_regs_fifo2_reg_word82_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word83_mine = (card1_pci_slave2_pci_requests2_local_addr == 4);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word83_mine, card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word82_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word83_read_chain
@@ -3525,42 +3364,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word83_shown};
+assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = {30'h0, card1_card_core1_regs_fifo2_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word83_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written[8-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped;
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word83__store59_clear_on_one
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word83_shown <= 0;
+always @(card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word83_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word83_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word83_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word83_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word83_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word83_shown <= ((card1_card_core1_regs_fifo2_reg_word83_shown & (~card1_card_core1_regs_fifo2_reg_word83_honoured)) | card1_card_core1_regs_fifo2_reg_word83__store59_word_hw);
-        end
-        else begin
-            card1_card_core1_regs_fifo2_reg_word83_shown <= (card1_card_core1_regs_fifo2_reg_word83_shown | card1_card_core1_regs_fifo2_reg_word83__store59_word_hw);
+        card1_card_core1_regs_fifo2_reg_word83_written = ((card1_card_core1_regs_fifo2_reg_word83_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written[2-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word82_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word83_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word83__store56_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word83_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word83_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word83_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word83_mine_write))) begin
+            card1_card_core1_regs_fifo2_control <= card1_card_core1_regs_fifo2_reg_word83_honoured;
+            card1_card_core1_regs_fifo2_reg_word83_clamped <= card1_card_core1_regs_fifo2_reg_word83_out_of_range;
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word84_mine = (card1_pci_slave2_pci_requests2_local_addr == 8);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word84_mine, card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word83_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word84_read_chain
@@ -3574,48 +3419,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word84_shown};
+assign card1_card_core1_regs_fifo2_reg_word84_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word84_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
+assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_regs_fifo2_written_addr == 8);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word84_shown_wide, card1_card_core1_regs_fifo2_reg_word84_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word84_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word84_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word84_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word84_written = ((card1_card_core1_regs_fifo2_reg_word84_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word84_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word84_written) begin: card1_card_core1_regs_fifo2_reg_word84__limit60_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word84_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word84_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[4-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word84_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store60_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word84__store57_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word84_shown <= 0;
+        card1_card_core1_regs_fifo2_command_strobe <= 0;
+        card1_card_core1_regs_fifo2_command <= 0;
         card1_card_core1_regs_fifo2_reg_word84_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_command_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word84_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word84_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word84_shown <= card1_card_core1_regs_fifo2_reg_word84_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word84_mine_write)) begin
+            card1_card_core1_regs_fifo2_command <= card1_card_core1_regs_fifo2_reg_word84_honoured;
+            card1_card_core1_regs_fifo2_command_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word84_clamped <= card1_card_core1_regs_fifo2_reg_word84_out_of_range;
         end
     end
@@ -3623,7 +3457,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
+assign card1_card_core1_regs_fifo2_reg_word85_mine = (card1_pci_slave2_pci_requests2_local_addr == 12);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word85_mine, card1_card_core1_regs_fifo2_reg_word85_shown_wide, card1_card_core1_regs_fifo2_reg_word84_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word85_read_chain
@@ -3637,7 +3471,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word85_shown};
+assign card1_card_core1_regs_fifo2_reg_word85_shown_wide = card1_card_core1_regs_fifo2_reg_word85_shown;
 
 
 
@@ -3645,7 +3479,7 @@ assign card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256));
+assign card1_card_core1_regs_fifo2_reg_word86_mine = (card1_pci_slave2_pci_requests2_local_addr == 16);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word86_mine, card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word85_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word86_read_chain
@@ -3659,15 +3493,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = card1_card_core1_regs_fifo2_reg_word86_shown;
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word86_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_pci_slave2_pci_requests2_local_addr == 320));
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[8-1:0];
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word86_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word86__store58_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word86_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word86_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word86_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word86_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word86_shown <= card1_card_core1_regs_fifo2_reg_word86_honoured;
+            card1_card_core1_regs_fifo2_reg_word86_clamped <= card1_card_core1_regs_fifo2_reg_word86_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_mine = (card1_pci_slave2_pci_requests2_local_addr == 20);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word87_mine, card1_card_core1_regs_fifo2_reg_word87_shown_wide, card1_card_core1_regs_fifo2_reg_word86_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word87_read_chain
@@ -3681,15 +3548,42 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = card1_card_core1_regs_fifo2_reg_word87_shown;
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_regs_fifo2_written_addr == 20);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[8-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
 
 
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word87__store59_clear_on_one
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word87_shown <= 0;
+    end
+    else begin
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word87_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word87_shown <= ((card1_card_core1_regs_fifo2_reg_word87_shown & (~card1_card_core1_regs_fifo2_reg_word87_honoured)) | card1_card_core1_regs_fifo2_reg_word87__store59_word_hw);
+        end
+        else begin
+            card1_card_core1_regs_fifo2_reg_word87_shown <= (card1_card_core1_regs_fifo2_reg_word87_shown | card1_card_core1_regs_fifo2_reg_word87__store59_word_hw);
+        end
+    end
+end
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_mine = (card1_pci_slave2_pci_requests2_local_addr == 24);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88_mine, card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word87_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word88_read_chain
@@ -3707,11 +3601,11 @@ assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
+assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word88_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word88_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word88_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3720,13 +3614,10 @@ always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit61_clamp_unsigned
+always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit60_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word88_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word88_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word88_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = 32768;
+    if ((card1_card_core1_regs_fifo2_reg_word88_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = 65535;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[16-1:0];
@@ -3739,14 +3630,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word88_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word88__store61_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word88__store60_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word88_shown <= 4096;
+        card1_card_core1_regs_fifo2_reg_word88_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word88_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word88_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word88_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word88_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word88_shown <= card1_card_core1_regs_fifo2_reg_word88_honoured;
             card1_card_core1_regs_fifo2_reg_word88_clamped <= card1_card_core1_regs_fifo2_reg_word88_out_of_range;
         end
@@ -3755,7 +3646,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
+assign card1_card_core1_regs_fifo2_reg_word89_mine = (card1_pci_slave2_pci_requests2_local_addr == 28);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word89_mine, card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_reg_word88_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word89_read_chain
@@ -3773,55 +3664,11 @@ assign card1_card_core1_regs_fifo2_reg_word89_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word89_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word89_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word89_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word89_written = ((card1_card_core1_regs_fifo2_reg_word89_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word89_written) begin: card1_card_core1_regs_fifo2_reg_word89__limit62_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word89_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = 1;
-    end
-    else if (((card1_card_core1_regs_fifo2_reg_word89_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word89_written[16-1:0] > 32768))) begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = 32768;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word89_honoured = card1_card_core1_regs_fifo2_reg_word89_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word89_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word89_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word89__store62_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word89_shown <= 4096;
-        card1_card_core1_regs_fifo2_reg_word89_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word89_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word89_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word89_shown <= card1_card_core1_regs_fifo2_reg_word89_honoured;
-            card1_card_core1_regs_fifo2_reg_word89_clamped <= card1_card_core1_regs_fifo2_reg_word89_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word90_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
+assign card1_card_core1_regs_fifo2_reg_word90_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3835,56 +3682,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
+assign card1_card_core1_regs_fifo2_reg_word90_shown_wide = card1_card_core1_regs_fifo2_reg_word90_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word90_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word90_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word90_written = ((card1_card_core1_regs_fifo2_reg_word90_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word90_written) begin: card1_card_core1_regs_fifo2_reg_word90__limit63_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word90_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word90_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word90_honoured = card1_card_core1_regs_fifo2_reg_word90_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word90_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word90_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word90__store63_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_ramp_step <= 0;
-        card1_card_core1_regs_fifo2_reg_word90_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word90_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word90_mine_write))) begin
-            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word90_honoured;
-            card1_card_core1_regs_fifo2_reg_word90_clamped <= card1_card_core1_regs_fifo2_reg_word90_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word91_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
+assign card1_card_core1_regs_fifo2_reg_word91_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_pci_slave2_pci_requests2_local_addr == 320));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -3898,59 +3704,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word91_shown};
+assign card1_card_core1_regs_fifo2_reg_word91_shown_wide = card1_card_core1_regs_fifo2_reg_word91_shown;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word91_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word91_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word91_written = ((card1_card_core1_regs_fifo2_reg_word91_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word91_written) begin: card1_card_core1_regs_fifo2_reg_word91__limit64_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word91_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word91_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word91_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = 255;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word91_honoured = card1_card_core1_regs_fifo2_reg_word91_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word91_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word91_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word91__store64_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word91_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word91_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word91_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word91_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word91_shown <= card1_card_core1_regs_fifo2_reg_word91_honoured;
-            card1_card_core1_regs_fifo2_reg_word91_clamped <= card1_card_core1_regs_fifo2_reg_word91_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word92_mine = (card1_pci_slave2_pci_requests2_local_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_mine, card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_reg_word91_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word92_read_chain
@@ -3964,15 +3726,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
+assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word92_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
+assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -3981,16 +3743,16 @@ always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit65_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit61_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word92_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = 255;
+    else if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word92_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word92_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b0;
     end
 end
@@ -4000,14 +3762,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word92_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store65_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word92__store61_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word92_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word92_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word92_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word92_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word92_shown <= card1_card_core1_regs_fifo2_reg_word92_honoured;
             card1_card_core1_regs_fifo2_reg_word92_clamped <= card1_card_core1_regs_fifo2_reg_word92_out_of_range;
         end
@@ -4016,7 +3778,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word93_mine = (card1_pci_slave2_pci_requests2_local_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word93_mine, card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_reg_word92_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word93_read_chain
@@ -4030,15 +3792,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
+assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word93_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
+assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word93_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
         card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -4047,16 +3809,16 @@ always @(card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit66_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit62_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word93_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word93_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = 255;
+    else if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word93_written[16-1:0] > 32768))) begin
+        card1_card_core1_regs_fifo2_reg_word93_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
     end
 end
@@ -4066,14 +3828,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word93_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store66_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word93__store62_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word93_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word93_shown <= 4096;
         card1_card_core1_regs_fifo2_reg_word93_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word93_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word93_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word93_shown <= card1_card_core1_regs_fifo2_reg_word93_honoured;
             card1_card_core1_regs_fifo2_reg_word93_clamped <= card1_card_core1_regs_fifo2_reg_word93_out_of_range;
         end
@@ -4082,7 +3844,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word94_mine = (card1_pci_slave2_pci_requests2_local_addr == 48);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word94_mine, card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word93_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word94_read_chain
@@ -4096,40 +3858,48 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word94_shown};
+assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {16'h0, card1_card_core1_regs_fifo2_ramp_step};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
+assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_reg_word94_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[6-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[6-1:0] & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
+        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
     end
 end
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[6-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit63_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word94_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word94_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b0;
+    end
+end
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word94_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store67_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word94__store63_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word94_shown <= 0;
+        card1_card_core1_regs_fifo2_ramp_step <= 0;
         card1_card_core1_regs_fifo2_reg_word94_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word94_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word94_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word94_shown <= card1_card_core1_regs_fifo2_reg_word94_honoured;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word94_mine_write))) begin
+            card1_card_core1_regs_fifo2_ramp_step <= card1_card_core1_regs_fifo2_reg_word94_honoured;
             card1_card_core1_regs_fifo2_reg_word94_clamped <= card1_card_core1_regs_fifo2_reg_word94_out_of_range;
         end
     end
@@ -4137,7 +3907,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_pci_slave2_pci_requests2_local_addr == 260));
+assign card1_card_core1_regs_fifo2_reg_word95_mine = (card1_pci_slave2_pci_requests2_local_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_mine, card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_reg_word94_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word95_read_chain
@@ -4151,15 +3921,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word95_shown};
+assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word95_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
+assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
         card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -4168,16 +3938,16 @@ always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit68_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit64_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word95_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word95_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word95_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word95_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word95_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word95_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written[8-1:0];
         card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b0;
     end
 end
@@ -4187,14 +3957,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word95_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word95__store68_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word95__store64_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word95_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word95_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word95_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word95_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word95_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word95_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word95_shown <= card1_card_core1_regs_fifo2_reg_word95_honoured;
             card1_card_core1_regs_fifo2_reg_word95_clamped <= card1_card_core1_regs_fifo2_reg_word95_out_of_range;
         end
@@ -4203,7 +3973,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_pci_slave2_pci_requests2_local_addr == 324));
+assign card1_card_core1_regs_fifo2_reg_word96_mine = (card1_pci_slave2_pci_requests2_local_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_mine, card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_reg_word95_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word96_read_chain
@@ -4217,15 +3987,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word96_shown};
+assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word96_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
+assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
         card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -4234,16 +4004,16 @@ always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_reg
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit69_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit65_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word96_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word96_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word96_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word96_honoured = 65535;
+    else if ((card1_card_core1_regs_fifo2_reg_word96_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word96_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written[8-1:0];
         card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b0;
     end
 end
@@ -4253,14 +4023,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word96_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word96__store69_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word96__store65_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word96_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word96_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word96_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word96_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word96_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word96_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word96_shown <= card1_card_core1_regs_fifo2_reg_word96_honoured;
             card1_card_core1_regs_fifo2_reg_word96_clamped <= card1_card_core1_regs_fifo2_reg_word96_out_of_range;
         end
@@ -4269,7 +4039,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_pci_slave2_pci_requests2_local_addr == 264));
+assign card1_card_core1_regs_fifo2_reg_word97_mine = (card1_pci_slave2_pci_requests2_local_addr == 60);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word97_mine, card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_reg_word96_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word97_read_chain
@@ -4283,29 +4053,34 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
+assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word97_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_written_addr == 264));
+assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word97_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit70_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word97_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word97_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word97_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word97_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word97_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
+        card1_card_core1_regs_fifo2_reg_word97_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word97_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word97_written = ((card1_card_core1_regs_fifo2_reg_word97_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit66_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word97_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word97_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word97_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b0;
     end
 end
 
@@ -4314,18 +4089,15 @@ end
 assign card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word97_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word97__store70_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word97__store66_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word97__store70_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word97_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word97_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word97_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word97_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word97__store70_word_value <= card1_card_core1_regs_fifo2_reg_word97_honoured;
-            card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word97_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_reg_word97_honoured;
             card1_card_core1_regs_fifo2_reg_word97_clamped <= card1_card_core1_regs_fifo2_reg_word97_out_of_range;
         end
     end
@@ -4333,7 +4105,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_pci_slave2_pci_requests2_local_addr == 328));
+assign card1_card_core1_regs_fifo2_reg_word98_mine = (card1_pci_slave2_pci_requests2_local_addr == 64);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word98_mine, card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word97_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word98_read_chain
@@ -4347,49 +4119,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word98_shown};
+assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word98_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_written_addr == 328));
+assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-
-assign card1_card_core1_regs_fifo2_reg_word98_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word98_written) begin: card1_card_core1_regs_fifo2_reg_word98__limit71_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word98_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word98_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b0;
-    end
-    else if (card1_card_core1_regs_fifo2_reg_word98_written[31]) begin
-        card1_card_core1_regs_fifo2_reg_word98_honoured = 8388608;
-        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b1;
+always @(card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word98_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word98_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word98_written = card1_card_core1_regs_fifo2_set_value[6-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word98_honoured = 8388607;
-        card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'b1;
+        card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown_wide[6-1:0] & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[6-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word98_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store71_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word98__store67_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word98__store71_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word98_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word98__store71_word_value <= card1_card_core1_regs_fifo2_reg_word98_honoured;
-            card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word98_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_reg_word98_honoured;
             card1_card_core1_regs_fifo2_reg_word98_clamped <= card1_card_core1_regs_fifo2_reg_word98_out_of_range;
         end
     end
@@ -4397,7 +4160,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
+assign card1_card_core1_regs_fifo2_reg_word99_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_pci_slave2_pci_requests2_local_addr == 260));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4411,15 +4174,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = card1_card_core1_regs_fifo2_reg_word99_shown;
+assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word99_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word99_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
+        card1_card_core1_regs_fifo2_reg_word99_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word99_written = ((card1_card_core1_regs_fifo2_reg_word99_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99_written) begin: card1_card_core1_regs_fifo2_reg_word99__limit68_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word99_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word99_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word99_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word99_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word99_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word99_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word99_honoured = card1_card_core1_regs_fifo2_reg_word99_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word99_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
+assign card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word99_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word99__store68_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word99_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word99_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word99_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word99_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word99_shown <= card1_card_core1_regs_fifo2_reg_word99_honoured;
+            card1_card_core1_regs_fifo2_reg_word99_clamped <= card1_card_core1_regs_fifo2_reg_word99_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_pci_slave2_pci_requests2_local_addr == 324));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4437,11 +4244,55 @@ assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word100_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
+        card1_card_core1_regs_fifo2_reg_word100_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word100_written = ((card1_card_core1_regs_fifo2_reg_word100_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100_written) begin: card1_card_core1_regs_fifo2_reg_word100__limit69_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word100_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word100_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word100_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word100_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word100_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word100_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word100_honoured = card1_card_core1_regs_fifo2_reg_word100_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word100_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
+assign card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word100_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word100__store69_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word100_shown <= 2;
+        card1_card_core1_regs_fifo2_reg_word100_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word100_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word100_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word100_shown <= card1_card_core1_regs_fifo2_reg_word100_honoured;
+            card1_card_core1_regs_fifo2_reg_word100_clamped <= card1_card_core1_regs_fifo2_reg_word100_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_pci_slave2_pci_requests2_local_addr == 264));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4455,15 +4306,57 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
+assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word101_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_written_addr == 264));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word101_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word101_written) begin: card1_card_core1_regs_fifo2_reg_word101__limit70_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word101_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word101_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word101_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word101_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b1;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word101_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b1;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word101_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word101__store70_pulse_on_write
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word101__store70_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word101_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe <= 1'b0;
+        card1_card_core1_regs_fifo2_reg_word101_clamped <= 1'b0;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word101_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word101__store70_word_value <= card1_card_core1_regs_fifo2_reg_word101_honoured;
+            card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe <= 1'b1;
+            card1_card_core1_regs_fifo2_reg_word101_clamped <= card1_card_core1_regs_fifo2_reg_word101_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_pci_slave2_pci_requests2_local_addr == 328));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4477,51 +4370,57 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
+assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {8'h0, card1_card_core1_regs_fifo2_reg_word102_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
+assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_written_addr == 328));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word102_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word102_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word102_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word102_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit71_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word102_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word102_written[32-1:(24 - 1)] == 511))) begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word102_written[31]) begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = 8388608;
+        card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word102_written = ((card1_card_core1_regs_fifo2_reg_word102_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+        card1_card_core1_regs_fifo2_reg_word102_honoured = 8388607;
+        card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
     end
 end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word102_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store72_hold_rw_cleared
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word102__store71_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_machine_control <= 0;
+        card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word102__store71_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word102_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word102_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word102_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word102_mine_write))) begin
-            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_reg_word102_honoured & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word102_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word102__store71_word_value <= card1_card_core1_regs_fifo2_reg_word102_honoured;
+            card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word102_clamped <= card1_card_core1_regs_fifo2_reg_word102_out_of_range;
-        end
-        else begin
-            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_machine_control & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
+assign card1_card_core1_regs_fifo2_reg_word103_mine = (card1_pci_slave2_pci_requests2_local_addr == 84);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word103_mine, card1_card_core1_regs_fifo2_reg_word103_shown_wide, card1_card_core1_regs_fifo2_reg_word102_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word103_read_chain
@@ -4535,7 +4434,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word103_shown};
+assign card1_card_core1_regs_fifo2_reg_word103_shown_wide = card1_card_core1_regs_fifo2_reg_word103_shown;
 
 
 
@@ -4543,7 +4442,7 @@ assign card1_card_core1_regs_fifo2_reg_word103_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
+assign card1_card_core1_regs_fifo2_reg_word104_mine = (card1_pci_slave2_pci_requests2_local_addr == 88);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word104_mine, card1_card_core1_regs_fifo2_reg_word104_shown_wide, card1_card_core1_regs_fifo2_reg_word103_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word104_read_chain
@@ -4557,7 +4456,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
+assign card1_card_core1_regs_fifo2_reg_word104_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word104_shown};
 
 
 
@@ -4565,7 +4464,7 @@ assign card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped = card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
+assign card1_card_core1_regs_fifo2_reg_word105_mine = (card1_pci_slave2_pci_requests2_local_addr == 92);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word105_mine, card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word104_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word105_read_chain
@@ -4579,48 +4478,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
+assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word105_shown_wide, card1_card_core1_regs_fifo2_reg_word105_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word105_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word105_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word105_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word105_written = ((card1_card_core1_regs_fifo2_reg_word105_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_honoured = card1_card_core1_regs_fifo2_reg_word105_written[7-1:0];
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word105_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word105__store73_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word105_shown <= 0;
-        card1_card_core1_regs_fifo2_reg_word105_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word105_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word105_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word105_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word105_shown <= card1_card_core1_regs_fifo2_reg_word105_honoured;
-            card1_card_core1_regs_fifo2_reg_word105_clamped <= card1_card_core1_regs_fifo2_reg_word105_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word106_mine = (card1_pci_slave2_pci_requests2_local_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word106_mine, card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word105_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word106_read_chain
@@ -4634,59 +4500,51 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word106_shown};
+assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {30'h0, card1_card_core1_regs_fifo2_machine_control};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word106_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word106_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word106_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+        card1_card_core1_regs_fifo2_reg_word106_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_reg_word106_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_reg_word106_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word106_written) begin: card1_card_core1_regs_fifo2_reg_word106__limit74_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word106_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word106_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word106_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word106_written[32-1:4] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word106_honoured = 15;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written[4-1:0];
-        card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written[2-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word106_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word106__store74_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word106__store72_hold_rw_cleared
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word106_shown <= 3;
+        card1_card_core1_regs_fifo2_machine_control <= 0;
         card1_card_core1_regs_fifo2_reg_word106_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word106_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word106_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word106_shown <= card1_card_core1_regs_fifo2_reg_word106_honoured;
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_reg_word106_honoured & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
             card1_card_core1_regs_fifo2_reg_word106_clamped <= card1_card_core1_regs_fifo2_reg_word106_out_of_range;
+        end
+        else begin
+            card1_card_core1_regs_fifo2_machine_control <= (card1_card_core1_regs_fifo2_machine_control & (~(card1_card_core1_regs_fifo2_drive_cleared & 1)));
         end
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
+assign card1_card_core1_regs_fifo2_reg_word107_mine = (card1_pci_slave2_pci_requests2_local_addr == 100);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word107_mine, card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word106_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word107_read_chain
@@ -4700,59 +4558,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word107_shown};
+assign card1_card_core1_regs_fifo2_reg_word107_shown_wide = {12'h0, card1_card_core1_regs_fifo2_reg_word107_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word107_shown_wide, card1_card_core1_regs_fifo2_reg_word107_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word107_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word107_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word107_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word107_written = ((card1_card_core1_regs_fifo2_reg_word107_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word107_written) begin: card1_card_core1_regs_fifo2_reg_word107__limit75_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word107_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word107_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word107_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word107_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word107_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word107_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word107_honoured = card1_card_core1_regs_fifo2_reg_word107_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word107_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word107_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word107__store75_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word107_shown <= 1;
-        card1_card_core1_regs_fifo2_reg_word107_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word107_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word107_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word107_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word107_shown <= card1_card_core1_regs_fifo2_reg_word107_honoured;
-            card1_card_core1_regs_fifo2_reg_word107_clamped <= card1_card_core1_regs_fifo2_reg_word107_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word108_mine = (card1_pci_slave2_pci_requests2_local_addr == 104);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word108_mine, card1_card_core1_regs_fifo2_reg_word108_shown_wide, card1_card_core1_regs_fifo2_reg_word107_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word108_read_chain
@@ -4766,53 +4580,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {8'h0, card1_card_core1_regs_fifo2_watchdog_left};
+assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
+assign card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word108_written) begin: card1_card_core1_regs_fifo2_reg_word108__limit76_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word108_written[32-1:24] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = 16777215;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word108_honoured = card1_card_core1_regs_fifo2_reg_word108_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word108_out_of_range = 1'b0;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word108_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word108__store76_pulse_on_write
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word108__store76_word_value <= 0;
-        card1_card_core1_regs_fifo2_reg_word108_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 1'b0;
-        card1_card_core1_regs_fifo2_reg_word108_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word108_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word108__store76_word_value <= card1_card_core1_regs_fifo2_reg_word108_honoured;
-            card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe <= 1'b1;
-            card1_card_core1_regs_fifo2_reg_word108_clamped <= card1_card_core1_regs_fifo2_reg_word108_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word109_mine = (card1_pci_slave2_pci_requests2_local_addr == 108);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word109_mine, card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word108_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word109_read_chain
@@ -4826,37 +4602,40 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {30'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
+assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word109_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
+assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_written = (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[7-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word108_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word109_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store77_pulse_on_write
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word109__store73_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 0;
-        card1_card_core1_regs_fifo2_reg_word109__store77_word_value <= 0;
+        card1_card_core1_regs_fifo2_reg_word109_shown <= 0;
         card1_card_core1_regs_fifo2_reg_word109_clamped <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word109_clamped <= 1'b0;
-        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write)) begin
-            card1_card_core1_regs_fifo2_reg_word109__store77_word_value <= card1_card_core1_regs_fifo2_reg_word109_honoured;
-            card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe <= 1'b1;
+        if (((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word109_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word109_shown <= card1_card_core1_regs_fifo2_reg_word109_honoured;
             card1_card_core1_regs_fifo2_reg_word109_clamped <= card1_card_core1_regs_fifo2_reg_word109_out_of_range;
         end
     end
@@ -4864,7 +4643,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
+assign card1_card_core1_regs_fifo2_reg_word110_mine = (card1_pci_slave2_pci_requests2_local_addr == 112);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word110_mine, card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word109_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word110_read_chain
@@ -4878,15 +4657,59 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
+assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {28'h0, card1_card_core1_regs_fifo2_reg_word110_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
+assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word110_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word110_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word110_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit74_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word110_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word110_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word110_written[32-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word110_honoured = 15;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written[4-1:0];
+        card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b0;
+    end
+end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word110_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word110__store74_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word110_shown <= 3;
+        card1_card_core1_regs_fifo2_reg_word110_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word110_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word110_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word110_shown <= card1_card_core1_regs_fifo2_reg_word110_honoured;
+            card1_card_core1_regs_fifo2_reg_word110_clamped <= card1_card_core1_regs_fifo2_reg_word110_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111_mine = (card1_pci_slave2_pci_requests2_local_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word111_mine, card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word110_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word111_read_chain
@@ -4904,7 +4727,7 @@ assign card1_card_core1_regs_fifo2_reg_word111_shown_wide = {16'h0, card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
+assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word111_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word111_merge_bytes
@@ -4917,7 +4740,7 @@ always @(card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_re
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit78_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit75_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word111_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word111_honoured = 1;
@@ -4936,9 +4759,9 @@ end
 assign card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word111_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word111__store78_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word111__store75_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word111_shown <= 100;
+        card1_card_core1_regs_fifo2_reg_word111_shown <= 1;
         card1_card_core1_regs_fifo2_reg_word111_clamped <= 0;
     end
     else begin
@@ -4952,7 +4775,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word112_mine = (card1_pci_slave2_pci_requests2_local_addr == 120);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word112_mine, card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word111_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word112_read_chain
@@ -4966,33 +4789,24 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word112_shown};
+assign card1_card_core1_regs_fifo2_reg_word112_shown_wide = {8'h0, card1_card_core1_regs_fifo2_watchdog_left};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
+assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_regs_fifo2_written_addr == 120);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word112_shown_wide, card1_card_core1_regs_fifo2_reg_word112_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word112_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word112_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word112_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word112_written = ((card1_card_core1_regs_fifo2_reg_word112_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word112_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit79_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit76_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word112_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word112_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word112_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word112_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word112_honoured = 65535;
+    if ((card1_card_core1_regs_fifo2_reg_word112_written[32-1:24] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = 16777215;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written[24-1:0];
         card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b0;
     end
 end
@@ -5002,15 +4816,18 @@ end
 assign card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word112_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word112__store79_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word112__store76_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word112_shown <= 1000;
+        card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word112__store76_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word112_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word112_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word112_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word112_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word112_shown <= card1_card_core1_regs_fifo2_reg_word112_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word112_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word112__store76_word_value <= card1_card_core1_regs_fifo2_reg_word112_honoured;
+            card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word112_clamped <= card1_card_core1_regs_fifo2_reg_word112_out_of_range;
         end
     end
@@ -5018,7 +4835,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word113_mine = (card1_pci_slave2_pci_requests2_local_addr == 124);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word113_mine, card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word112_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word113_read_chain
@@ -5032,48 +4849,37 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
+assign card1_card_core1_regs_fifo2_reg_word113_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
+assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_regs_fifo2_written_addr == 124);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word113_shown_wide, card1_card_core1_regs_fifo2_reg_word113_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word113_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word113_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word113_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word113_written = ((card1_card_core1_regs_fifo2_reg_word113_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word113_written = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word113_written) begin: card1_card_core1_regs_fifo2_reg_word113__limit80_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word113_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word113_written[32-1:16] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word113_honoured = 65535;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word113_out_of_range = 1'b0;
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[7-1:0];
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word113_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word113__store80_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word113__store77_pulse_on_write
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word113_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe <= 0;
+        card1_card_core1_regs_fifo2_reg_word113__store77_word_value <= 0;
         card1_card_core1_regs_fifo2_reg_word113_clamped <= 0;
     end
     else begin
+        card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe <= 1'b0;
         card1_card_core1_regs_fifo2_reg_word113_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word113_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word113_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word113_shown <= card1_card_core1_regs_fifo2_reg_word113_honoured;
+        if ((card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word113_mine_write)) begin
+            card1_card_core1_regs_fifo2_reg_word113__store77_word_value <= card1_card_core1_regs_fifo2_reg_word113_honoured;
+            card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe <= 1'b1;
             card1_card_core1_regs_fifo2_reg_word113_clamped <= card1_card_core1_regs_fifo2_reg_word113_out_of_range;
         end
     end
@@ -5081,7 +4887,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+assign card1_card_core1_regs_fifo2_reg_word114_mine = (card1_pci_slave2_pci_requests2_local_addr == 128);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word114_mine, card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word113_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word114_read_chain
@@ -5095,59 +4901,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word114_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
+assign card1_card_core1_regs_fifo2_reg_word114_shown_wide = {26'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word114_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
-
-
-always @(card1_card_core1_regs_fifo2_reg_word114_shown_wide, card1_card_core1_regs_fifo2_reg_word114_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word114_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word114_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word114_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word114_written = ((card1_card_core1_regs_fifo2_reg_word114_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_reg_word114_written) begin: card1_card_core1_regs_fifo2_reg_word114__limit81_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word114_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word114_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word114_written[1-1:0] < 1))) begin
-        card1_card_core1_regs_fifo2_reg_word114_honoured = 1;
-    end
-    else if ((card1_card_core1_regs_fifo2_reg_word114_written[32-1:23] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word114_honoured = 8388607;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word114_honoured = card1_card_core1_regs_fifo2_reg_word114_written[23-1:0];
-        card1_card_core1_regs_fifo2_reg_word114_out_of_range = 1'b0;
-    end
-end
+assign card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped;
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word114_clamped);
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word114__store81_hold_rw
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word114_shown <= 65535;
-        card1_card_core1_regs_fifo2_reg_word114_clamped <= 0;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word114_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_reg_word114_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word114_mine_write))) begin
-            card1_card_core1_regs_fifo2_reg_word114_shown <= card1_card_core1_regs_fifo2_reg_word114_honoured;
-            card1_card_core1_regs_fifo2_reg_word114_clamped <= card1_card_core1_regs_fifo2_reg_word114_out_of_range;
-        end
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_pci_slave2_pci_requests2_local_addr == 148);
+assign card1_card_core1_regs_fifo2_reg_word115_mine = (card1_pci_slave2_pci_requests2_local_addr == 132);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word115_mine, card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word114_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word115_read_chain
@@ -5161,15 +4923,15 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word115_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word115_shown};
+assign card1_card_core1_regs_fifo2_reg_word115_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word115_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_regs_fifo2_written_addr == 148);
+assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word115_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8))) begin
+always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word115_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word115_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word115_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
         card1_card_core1_regs_fifo2_reg_word115_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
     end
     else begin
@@ -5178,16 +4940,16 @@ always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_re
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit82_clamp_unsigned_power_of_two
+always @(card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit78_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b1;
     if (((card1_card_core1_regs_fifo2_reg_word115_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115_written[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word115_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word115_written[32-1:8] != 0)) begin
-        card1_card_core1_regs_fifo2_reg_word115_honoured = 255;
+    else if ((card1_card_core1_regs_fifo2_reg_word115_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word115_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b0;
     end
 end
@@ -5197,14 +4959,14 @@ end
 assign card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word115_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word115__store82_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word115__store78_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_reg_word115_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word115_shown <= 100;
         card1_card_core1_regs_fifo2_reg_word115_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word115_clamped <= 1'b0;
-        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word115_mine_write))) begin
+        if (((card1_card_core1_regs_fifo2_reg_word115_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word115_mine_write))) begin
             card1_card_core1_regs_fifo2_reg_word115_shown <= card1_card_core1_regs_fifo2_reg_word115_honoured;
             card1_card_core1_regs_fifo2_reg_word115_clamped <= card1_card_core1_regs_fifo2_reg_word115_out_of_range;
         end
@@ -5213,25 +4975,25 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_pci_slave2_pci_requests2_local_addr == 152);
+assign card1_card_core1_regs_fifo2_reg_word116_mine = (card1_pci_slave2_pci_requests2_local_addr == 136);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word116_mine, card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word115_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word116_read_chain
     if (card1_card_core1_regs_fifo2_reg_word116_mine) begin
-        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word115_chain_out_data | card1_card_core1_regs_fifo2_reg_word116_shown_wide);
+        card1_card_core1_regs_fifo2_reg_word116_chain_out_data = (card1_card_core1_regs_fifo2_reg_word115_chain_out_data | card1_card_core1_regs_fifo2_reg_word116_shown_wide);
     end
     else begin
-        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
+        card1_card_core1_regs_fifo2_reg_word116_chain_out_data = card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {30'h0, card1_card_core1_regs_fifo2_step_mode};
+assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word116_shown};
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_regs_fifo2_written_addr == 152);
+assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word116_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word116_merge_bytes
@@ -5244,13 +5006,16 @@ always @(card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_re
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit83_clamp_above
+always @(card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit79_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word116_written[2-1:0] > 2))) begin
-        card1_card_core1_regs_fifo2_reg_word116_honoured = 2;
+    if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word116_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word116_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word116_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written[16-1:0];
         card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b0;
     end
 end
@@ -5260,19 +5025,321 @@ end
 assign card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word116_clamped);
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word116__store83_hold_rw
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word116__store79_hold_rw
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_step_mode <= 0;
+        card1_card_core1_regs_fifo2_reg_word116_shown <= 1000;
         card1_card_core1_regs_fifo2_reg_word116_clamped <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_reg_word116_clamped <= 1'b0;
         if (((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word116_mine_write))) begin
-            card1_card_core1_regs_fifo2_step_mode <= card1_card_core1_regs_fifo2_reg_word116_honoured;
+            card1_card_core1_regs_fifo2_reg_word116_shown <= card1_card_core1_regs_fifo2_reg_word116_honoured;
             card1_card_core1_regs_fifo2_reg_word116_clamped <= card1_card_core1_regs_fifo2_reg_word116_out_of_range;
         end
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117_mine = (card1_pci_slave2_pci_requests2_local_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word117_mine, card1_card_core1_regs_fifo2_reg_word117_shown_wide, card1_card_core1_regs_fifo2_reg_word116_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word117_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word117_mine) begin
+        card1_card_core1_regs_fifo2_reg_word117_chain_out_data = (card1_card_core1_regs_fifo2_reg_word116_chain_out_data | card1_card_core1_regs_fifo2_reg_word117_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word117_chain_out_data = card1_card_core1_regs_fifo2_reg_word116_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word117_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word117_shown_wide, card1_card_core1_regs_fifo2_reg_word117_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word117_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word117_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word117_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word117_written = ((card1_card_core1_regs_fifo2_reg_word117_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word117_written) begin: card1_card_core1_regs_fifo2_reg_word117__limit80_clamp_above_power_of_two
+    card1_card_core1_regs_fifo2_reg_word117_out_of_range = 1'b1;
+    if ((card1_card_core1_regs_fifo2_reg_word117_written[32-1:16] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word117_honoured = 65535;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word117_honoured = card1_card_core1_regs_fifo2_reg_word117_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word117_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word117_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word117__store80_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word117_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word117_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word117_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word117_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word117_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word117_shown <= card1_card_core1_regs_fifo2_reg_word117_honoured;
+            card1_card_core1_regs_fifo2_reg_word117_clamped <= card1_card_core1_regs_fifo2_reg_word117_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118_mine = (card1_pci_slave2_pci_requests2_local_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118_mine, card1_card_core1_regs_fifo2_reg_word118_shown_wide, card1_card_core1_regs_fifo2_reg_word117_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word118_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word118_mine) begin
+        card1_card_core1_regs_fifo2_reg_word118_chain_out_data = (card1_card_core1_regs_fifo2_reg_word117_chain_out_data | card1_card_core1_regs_fifo2_reg_word118_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word118_chain_out_data = card1_card_core1_regs_fifo2_reg_word117_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118_shown_wide = {9'h0, card1_card_core1_regs_fifo2_reg_word118_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118_shown_wide, card1_card_core1_regs_fifo2_reg_word118_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word118_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word118_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word118_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word118_written = ((card1_card_core1_regs_fifo2_reg_word118_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118_written) begin: card1_card_core1_regs_fifo2_reg_word118__limit81_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word118_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word118_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word118_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word118_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word118_written[32-1:23] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word118_honoured = 8388607;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word118_honoured = card1_card_core1_regs_fifo2_reg_word118_written[23-1:0];
+        card1_card_core1_regs_fifo2_reg_word118_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word117_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word118_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word118__store81_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word118_shown <= 65535;
+        card1_card_core1_regs_fifo2_reg_word118_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word118_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word118_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word118_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word118_shown <= card1_card_core1_regs_fifo2_reg_word118_honoured;
+            card1_card_core1_regs_fifo2_reg_word118_clamped <= card1_card_core1_regs_fifo2_reg_word118_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119_mine = (card1_pci_slave2_pci_requests2_local_addr == 148);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119_mine, card1_card_core1_regs_fifo2_reg_word119_shown_wide, card1_card_core1_regs_fifo2_reg_word118_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word119_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word119_mine) begin
+        card1_card_core1_regs_fifo2_reg_word119_chain_out_data = (card1_card_core1_regs_fifo2_reg_word118_chain_out_data | card1_card_core1_regs_fifo2_reg_word119_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word119_chain_out_data = card1_card_core1_regs_fifo2_reg_word118_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word119_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119_mine_write = (card1_card_core1_regs_fifo2_written_addr == 148);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word119_merge_bytes
+    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8))) begin
+        card1_card_core1_regs_fifo2_reg_word119_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word119_written = ((card1_card_core1_regs_fifo2_reg_word119_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119_written) begin: card1_card_core1_regs_fifo2_reg_word119__limit82_clamp_unsigned_power_of_two
+    card1_card_core1_regs_fifo2_reg_word119_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word119_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word119_written[1-1:0] < 1))) begin
+        card1_card_core1_regs_fifo2_reg_word119_honoured = 1;
+    end
+    else if ((card1_card_core1_regs_fifo2_reg_word119_written[32-1:8] != 0)) begin
+        card1_card_core1_regs_fifo2_reg_word119_honoured = 255;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word119_honoured = card1_card_core1_regs_fifo2_reg_word119_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word119_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word118_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word119_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word119__store82_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_reg_word119_shown <= 1;
+        card1_card_core1_regs_fifo2_reg_word119_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word119_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word119_mine_write))) begin
+            card1_card_core1_regs_fifo2_reg_word119_shown <= card1_card_core1_regs_fifo2_reg_word119_honoured;
+            card1_card_core1_regs_fifo2_reg_word119_clamped <= card1_card_core1_regs_fifo2_reg_word119_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120_mine = (card1_pci_slave2_pci_requests2_local_addr == 152);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word120_mine, card1_card_core1_regs_fifo2_reg_word120_shown_wide, card1_card_core1_regs_fifo2_reg_word119_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word120_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word120_mine) begin
+        card1_card_core1_regs_fifo2_reg_word120_chain_out_data = (card1_card_core1_regs_fifo2_reg_word119_chain_out_data | card1_card_core1_regs_fifo2_reg_word120_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word120_chain_out_data = card1_card_core1_regs_fifo2_reg_word119_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120_shown_wide = {30'h0, card1_card_core1_regs_fifo2_step_mode};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120_mine_write = (card1_card_core1_regs_fifo2_written_addr == 152);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word120_shown_wide, card1_card_core1_regs_fifo2_reg_word120_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word120_merge_bytes
+    if ((card1_card_core1_regs_fifo2_reg_word120_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
+        card1_card_core1_regs_fifo2_reg_word120_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word120_written = ((card1_card_core1_regs_fifo2_reg_word120_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word120_written) begin: card1_card_core1_regs_fifo2_reg_word120__limit83_clamp_above
+    card1_card_core1_regs_fifo2_reg_word120_out_of_range = 1'b1;
+    if (((card1_card_core1_regs_fifo2_reg_word120_written[32-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word120_written[2-1:0] > 2))) begin
+        card1_card_core1_regs_fifo2_reg_word120_honoured = 2;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word120_honoured = card1_card_core1_regs_fifo2_reg_word120_written[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word120_out_of_range = 1'b0;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120_chain_out_clamped = (card1_card_core1_regs_fifo2_reg_word119_chain_out_clamped || card1_card_core1_regs_fifo2_reg_word120_clamped);
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_reg_word120__store83_hold_rw
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_step_mode <= 0;
+        card1_card_core1_regs_fifo2_reg_word120_clamped <= 0;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word120_clamped <= 1'b0;
+        if (((card1_card_core1_regs_fifo2_reg_word120_set_mine && (card1_card_core1_regs_fifo2_set_index == 0)) || (card1_card_core1_regs_fifo2_io_written && card1_card_core1_regs_fifo2_reg_word120_mine_write))) begin
+            card1_card_core1_regs_fifo2_step_mode <= card1_card_core1_regs_fifo2_reg_word120_honoured;
+            card1_card_core1_regs_fifo2_reg_word120_clamped <= card1_card_core1_regs_fifo2_reg_word120_out_of_range;
+        end
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word121_mine = (card1_pci_slave2_pci_requests2_local_addr == 156);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word121_mine, card1_card_core1_regs_fifo2_reg_word121_shown_wide, card1_card_core1_regs_fifo2_reg_word120_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word121_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word121_mine) begin
+        card1_card_core1_regs_fifo2_reg_word121_chain_out_data = (card1_card_core1_regs_fifo2_reg_word120_chain_out_data | card1_card_core1_regs_fifo2_reg_word121_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word121_chain_out_data = card1_card_core1_regs_fifo2_reg_word120_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word121_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word121_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word121_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word120_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word122_mine = (card1_pci_slave2_pci_requests2_local_addr == 160);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word122_mine, card1_card_core1_regs_fifo2_reg_word122_shown_wide, card1_card_core1_regs_fifo2_reg_word121_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word122_read_chain
+    if (card1_card_core1_regs_fifo2_reg_word122_mine) begin
+        card1_card_core1_regs_fifo2_read_end = (card1_card_core1_regs_fifo2_reg_word121_chain_out_data | card1_card_core1_regs_fifo2_reg_word122_shown_wide);
+    end
+    else begin
+        card1_card_core1_regs_fifo2_read_end = card1_card_core1_regs_fifo2_reg_word121_chain_out_data;
+    end
+end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word122_shown_wide = {25'h0, card1_card_core1_regs_fifo2_reg_word122_shown};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word121_chain_out_clamped;
 
 
 
@@ -6024,13 +6091,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
         card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
-        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word88_shown;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word89_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word92_shown;
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word93_shown;
         card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word88_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word88_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word89_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word92_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
+        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word92_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
+        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word93_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -6201,9 +6268,9 @@ assign card1_card_core1_regs_fifo2_direct_pulse4_command_busy = (card1_card_core
 assign card1_card_core1_regs_fifo2_direct_pulse4_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse4_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse4_pending)));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word97_shown, card1_card_core1_regs_fifo2_direct_pulse4_stepping, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word101_shown, card1_card_core1_regs_fifo2_direct_pulse4_stepping, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget))) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word97_shown;
+        card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word101_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
@@ -6243,18 +6310,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word97_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word101_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_x <= 0;
         if (card1_card_core1_regs_fifo2_direct_clear) begin
-            card1_card_core1_regs_fifo2_reg_word97_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word101_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             card1_card_core1_regs_fifo2_direct_dir_x <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= 0;
@@ -6262,19 +6329,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
             card1_card_core1_regs_fifo2_direct_request_x <= 1;
-            card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+            card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
             if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (!((card1_card_core1_regs_fifo2_direct_pulse4_command_count == 1) || (card1_card_core1_regs_fifo2_direct_pulse4_command_count == (-1))));
             end
             else begin
-                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word97_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_reg_word101_shown != 1);
             end
             card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
             card1_card_core1_regs_fifo2_direct_pulse4_waiting <= (card1_card_core1_regs_fifo2_direct_pulse4_command_period != 1);
         end
         else begin
             if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
-                card1_card_core1_regs_fifo2_reg_word97_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
             end
             if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
@@ -6294,9 +6361,9 @@ assign card1_card_core1_regs_fifo2_direct_pulse5_command_busy = (card1_card_core
 assign card1_card_core1_regs_fifo2_direct_pulse5_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse5_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse5_pending)));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word98_shown, card1_card_core1_regs_fifo2_direct_pulse5_stepping, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word102_shown, card1_card_core1_regs_fifo2_direct_pulse5_stepping, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget))) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word98_shown;
+        card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word102_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
     end
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
@@ -6336,18 +6403,18 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         card1_card_core1_regs_fifo2_direct_dir_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_waiting <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
-        card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word102_shown <= 0;
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_direct_request_y <= 0;
         if (card1_card_core1_regs_fifo2_direct_clear) begin
-            card1_card_core1_regs_fifo2_reg_word98_shown <= 0;
+            card1_card_core1_regs_fifo2_reg_word102_shown <= 0;
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= 0;
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_command_load) begin
-            card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             card1_card_core1_regs_fifo2_direct_dir_y <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count >= 0);
             card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= 0;
@@ -6355,19 +6422,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         end
         else if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
             card1_card_core1_regs_fifo2_direct_request_y <= 1;
-            card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+            card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
             if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (!((card1_card_core1_regs_fifo2_direct_pulse5_command_count == 1) || (card1_card_core1_regs_fifo2_direct_pulse5_command_count == (-1))));
             end
             else begin
-                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word98_shown != 1);
+                card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_reg_word102_shown != 1);
             end
             card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
             card1_card_core1_regs_fifo2_direct_pulse5_waiting <= (card1_card_core1_regs_fifo2_direct_pulse5_command_period != 1);
         end
         else begin
             if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
-                card1_card_core1_regs_fifo2_reg_word98_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
             end
             if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
@@ -6426,11 +6493,11 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level) begin: card1_c
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_axis_x_level, card1_card_core1_regs_fifo2_reg_word94_shown[0], card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level, card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad, card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_pin_direction
-    card1_card_core1_regs_fifo2_pulse_out2_axis_x_up = (card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[0]);
+always @(card1_card_core1_regs_fifo2_pulse_out2_axis_x_level, card1_card_core1_regs_fifo2_reg_word98_shown[0], card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level, card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad, card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_x_pin_direction
+    card1_card_core1_regs_fifo2_pulse_out2_axis_x_up = (card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level ^ card1_card_core1_regs_fifo2_reg_word98_shown[0]);
     card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next = card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad;
     if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_x_pulse))) begin
-        if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[0])) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_axis_x_dir_level ^ card1_card_core1_regs_fifo2_reg_word98_shown[0])) begin
             card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad_next = (card1_card_core1_regs_fifo2_pulse_out2_axis_x_quad + 1);
         end
         else begin
@@ -6520,11 +6587,11 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level) begin: card1_c
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_axis_y_level, card1_card_core1_regs_fifo2_reg_word94_shown[1], card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level, card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad, card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_pin_direction
-    card1_card_core1_regs_fifo2_pulse_out2_axis_y_up = (card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[1]);
+always @(card1_card_core1_regs_fifo2_pulse_out2_axis_y_level, card1_card_core1_regs_fifo2_reg_word98_shown[1], card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level, card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad, card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse) begin: card1_card_core1_regs_fifo2_pulse_out2_axis_y_pin_direction
+    card1_card_core1_regs_fifo2_pulse_out2_axis_y_up = (card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level ^ card1_card_core1_regs_fifo2_reg_word98_shown[1]);
     card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next = card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad;
     if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_level && (!card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse))) begin
-        if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level ^ card1_card_core1_regs_fifo2_reg_word94_shown[1])) begin
+        if ((card1_card_core1_regs_fifo2_pulse_out2_axis_y_dir_level ^ card1_card_core1_regs_fifo2_reg_word98_shown[1])) begin
             card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad_next = (card1_card_core1_regs_fifo2_pulse_out2_axis_y_quad + 1);
         end
         else begin
@@ -6593,12 +6660,12 @@ assign card1_card_core1_regs_fifo2_pulse_out2_control_pulsing = (card1_card_core
 assign card1_card_core1_regs_fifo2_pulse_out2_head = card1_card_core1_regs_fifo2_pulse_out2_queue[0];
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_reg_word115_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_turns) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_count, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_reg_word119_shown, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_turns) begin: card1_card_core1_regs_fifo2_pulse_out2_decide
     card1_card_core1_regs_fifo2_pulse_out2_turn = ((card1_card_core1_regs_fifo2_pulse_out2_count != 0) && (card1_card_core1_regs_fifo2_pulse_out2_turns != 0));
     card1_card_core1_regs_fifo2_pulse_out2_take = 1'b0;
-    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word115_shown))) begin
+    if (((card1_card_core1_regs_fifo2_pulse_out2_phase != 2'b10) && (!card1_card_core1_regs_fifo2_pulse_clear) && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word119_shown))) begin
         if ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b01)) begin
-            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word92_shown);
+            card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word96_shown);
         end
         else if ((card1_card_core1_regs_fifo2_pulse_out2_count != 0)) begin
             card1_card_core1_regs_fifo2_pulse_out2_take = (card1_card_core1_regs_fifo2_pulse_out2_turns == 0);
@@ -6607,10 +6674,10 @@ always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word91_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word93_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
-    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word93_shown)));
-    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word91_shown));
-    card1_card_core1_regs_fifo2_pulse_out2_set_dir = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word93_shown) && (!card1_card_core1_regs_fifo2_pulse_out2_take));
+always @(card1_card_core1_regs_fifo2_pulse_out2_phase_clocks, card1_card_core1_regs_fifo2_pulse_out2_phase, card1_card_core1_regs_fifo2_pulse_out2_low_clocks, card1_card_core1_regs_fifo2_pulse_out2_turn, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_pulse_clear, card1_card_core1_regs_fifo2_pulse_out2_take, card1_card_core1_regs_fifo2_reg_word97_shown) begin: card1_card_core1_regs_fifo2_pulse_out2_restart
+    card1_card_core1_regs_fifo2_pulse_out2_starts = (card1_card_core1_regs_fifo2_pulse_out2_take || ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word97_shown)));
+    card1_card_core1_regs_fifo2_pulse_out2_high_ends = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b10) && (card1_card_core1_regs_fifo2_pulse_out2_phase_clocks >= card1_card_core1_regs_fifo2_reg_word95_shown));
+    card1_card_core1_regs_fifo2_pulse_out2_set_dir = ((card1_card_core1_regs_fifo2_pulse_out2_phase == 2'b00) && (!card1_card_core1_regs_fifo2_pulse_clear) && card1_card_core1_regs_fifo2_pulse_out2_turn && (card1_card_core1_regs_fifo2_pulse_out2_low_clocks >= card1_card_core1_regs_fifo2_reg_word97_shown) && (!card1_card_core1_regs_fifo2_pulse_out2_take));
     card1_card_core1_regs_fifo2_pulse_out2_phase_step = 0;
     if ((card1_card_core1_regs_fifo2_pulse_out2_phase_clocks != 255)) begin
         card1_card_core1_regs_fifo2_pulse_out2_phase_step = 1;
@@ -6721,7 +6788,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word105_shown);
+assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word109_shown);
 assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
 
 
@@ -6731,7 +6798,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_
     end
     else begin
         if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
-            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word107_shown - 1);
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word111_shown - 1);
         end
         else begin
             card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
@@ -6773,7 +6840,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count14_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[0] != card1_card_core1_regs_fifo2_conditioning_active[0]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count14_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count15_count_samples
@@ -6797,7 +6864,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count15_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[1] != card1_card_core1_regs_fifo2_conditioning_active[1]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count15_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count16_count_samples
@@ -6821,7 +6888,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count16_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[2] != card1_card_core1_regs_fifo2_conditioning_active[2]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count16_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count17_count_samples
@@ -6845,7 +6912,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count17_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[3] != card1_card_core1_regs_fifo2_conditioning_active[3]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count17_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count18_count_samples
@@ -6869,7 +6936,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count18_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[4] != card1_card_core1_regs_fifo2_conditioning_active[4]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count18_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count19_count_samples
@@ -6893,7 +6960,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count19_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[5] != card1_card_core1_regs_fifo2_conditioning_active[5]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count19_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2__input_count20_count_samples
@@ -6917,7 +6984,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word106_shown));
+assign card1_card_core1_regs_fifo2_input_filter2__input_count20_taken = (card1_card_core1_regs_fifo2_input_filter2_sample && (card1_card_core1_regs_fifo2_input_filter2_level[6] != card1_card_core1_regs_fifo2_conditioning_active[6]) && ((card1_card_core1_regs_fifo2_input_filter2__input_count20_held + 1) >= card1_card_core1_regs_fifo2_reg_word110_shown));
 
 
 
@@ -6931,9 +6998,18 @@ assign card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_dir = card1_ca
 
 
 
+assign card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_pos = (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1]);
+assign card1_card_core1_regs_fifo2_machine_guard2_limit_x_hit_neg = (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]);
+
+
+
+assign card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_pos = (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]);
+assign card1_card_core1_regs_fifo2_machine_guard2_limit_y_hit_neg = (card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]);
+
+
+
 assign card1_card_core1_regs_fifo2_machine_guard2_estop = card1_card_core1_regs_fifo2_conditioning_active[0];
-assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe));
-assign card1_card_core1_regs_fifo2_machine_guard2_hits = {(card1_card_core1_regs_fifo2_requests_step_y && (!card1_card_core1_regs_fifo2_requests_dir_y) && card1_card_core1_regs_fifo2_conditioning_active[4]), (card1_card_core1_regs_fifo2_requests_step_y && card1_card_core1_regs_fifo2_requests_dir_y && card1_card_core1_regs_fifo2_conditioning_active[3]), (card1_card_core1_regs_fifo2_requests_step_x && (!card1_card_core1_regs_fifo2_requests_dir_x) && card1_card_core1_regs_fifo2_conditioning_active[2]), (card1_card_core1_regs_fifo2_requests_step_x && card1_card_core1_regs_fifo2_requests_dir_x && card1_card_core1_regs_fifo2_conditioning_active[1])};
+assign card1_card_core1_regs_fifo2_machine_guard2_expired = ((card1_card_core1_regs_fifo2_watchdog_left == 1) && (!card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe));
 
 
 
@@ -6997,8 +7073,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
         card1_card_core1_regs_fifo2_watchdog_left <= 0;
     end
     else begin
-        if (card1_card_core1_regs_fifo2_reg_word108__store76_word_strobe) begin
-            card1_card_core1_regs_fifo2_watchdog_left <= card1_card_core1_regs_fifo2_reg_word108__store76_word_value;
+        if (card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe) begin
+            card1_card_core1_regs_fifo2_watchdog_left <= card1_card_core1_regs_fifo2_reg_word112__store76_word_value;
         end
         else if ((card1_card_core1_regs_fifo2_watchdog_left != 0)) begin
             card1_card_core1_regs_fifo2_watchdog_left <= (card1_card_core1_regs_fifo2_watchdog_left - 1);
@@ -7007,22 +7083,41 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word114_shown, card1_card_core1_regs_fifo2_reg_word113_shown, card1_card_core1_regs_fifo2_home_inputs, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
-    card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_axis ? card1_card_core1_regs_fifo2_home_inputs[1] : card1_card_core1_regs_fifo2_home_inputs[0];
-    card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
-    card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
-    if (((card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b100))) begin
-        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word113_shown};
+always @(card1_card_core1_regs_fifo2_reg_word113__store77_word_value) begin: card1_card_core1_regs_fifo2_homing2_ask
+    if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4] != 0)) begin
+        card1_card_core1_regs_fifo2_homing2_asked = card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4];
+        card1_card_core1_regs_fifo2_homing2_valid = (card1_card_core1_regs_fifo2_reg_word113__store77_word_value[7-1:4] < 2);
     end
     else begin
-        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word114_shown};
+        card1_card_core1_regs_fifo2_homing2_asked = {2'h0, card1_card_core1_regs_fifo2_reg_word113__store77_word_value[0]};
+        card1_card_core1_regs_fifo2_homing2_valid = 1'b1;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word109__store77_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
+
+assign card1_card_core1_regs_fifo2_homing2_slot = card1_card_core1_regs_fifo2_homing2_axis[1-1:0];
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118_shown, card1_card_core1_regs_fifo2_homing2_slot, card1_card_core1_regs_fifo2_reg_word117_shown, card1_card_core1_regs_fifo2_homing2_port_home, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_select
+    card1_card_core1_regs_fifo2_homing2_switch = 0;
+    if ((card1_card_core1_regs_fifo2_homing2_axis < 2)) begin
+        card1_card_core1_regs_fifo2_homing2_switch = card1_card_core1_regs_fifo2_homing2_port_home[card1_card_core1_regs_fifo2_homing2_slot];
+    end
+    card1_card_core1_regs_fifo2_homing2_seeking = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b010));
+    card1_card_core1_regs_fifo2_homing2_seek_next = ((card1_card_core1_regs_fifo2_homing2_state == 3'b000) || (card1_card_core1_regs_fifo2_homing2_state == 3'b001) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)));
+    if (((card1_card_core1_regs_fifo2_homing2_state == 3'b011) || (card1_card_core1_regs_fifo2_homing2_state == 3'b100))) begin
+        card1_card_core1_regs_fifo2_homing2_magnitude = {8'h0, card1_card_core1_regs_fifo2_reg_word117_shown};
+    end
+    else begin
+        card1_card_core1_regs_fifo2_homing2_magnitude = {1'h0, card1_card_core1_regs_fifo2_reg_word118_shown};
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word113__store77_word_value, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_negative) begin: card1_card_core1_regs_fifo2_homing2_command
     if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word109__store77_word_value[1]);
+        card1_card_core1_regs_fifo2_homing2_positive = (!card1_card_core1_regs_fifo2_reg_word113__store77_word_value[1]);
     end
     else begin
         card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
@@ -7056,18 +7151,19 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     else begin
         card1_card_core1_regs_fifo2_homing2_port_count <= $signed(card1_card_core1_regs_fifo2_homing2_signed_count);
         if (card1_card_core1_regs_fifo2_homing2_seek_next) begin
-            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word111_shown;
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word115_shown;
         end
         else begin
-            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word112_shown;
+            card1_card_core1_regs_fifo2_homing2_port_period <= card1_card_core1_regs_fifo2_reg_word116_shown;
         end
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
+always @(card1_card_core1_regs_fifo2_homing2_slot, card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
     reg drained;
     reg released;
+    reg [2-1:0] zero;
     drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
     released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
     card1_card_core1_regs_fifo2_homing2_opened = released;
@@ -7075,15 +7171,11 @@ always @(card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pul
     card1_card_core1_regs_fifo2_homing2_finished = ((card1_card_core1_regs_fifo2_homing2_state == 3'b110) && (!card1_card_core1_regs_fifo2_out_active));
     card1_card_core1_regs_fifo2_home_cut = ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch);
     card1_card_core1_regs_fifo2_homing2_port_retarget = released;
-    card1_card_core1_regs_fifo2_home_zero = 0;
-    if (released) begin
-        if (card1_card_core1_regs_fifo2_homing2_axis) begin
-            card1_card_core1_regs_fifo2_home_zero = 2;
-        end
-        else begin
-            card1_card_core1_regs_fifo2_home_zero = 1;
-        end
+    zero = 2'h0;
+    if ((released && (card1_card_core1_regs_fifo2_homing2_axis < 2))) begin
+        zero[card1_card_core1_regs_fifo2_homing2_slot] = 1;
     end
+    card1_card_core1_regs_fifo2_home_zero = zero;
 end
 
 
@@ -7103,20 +7195,21 @@ always @(card1_card_core1_regs_fifo2_homing2_seeking, card1_card_core1_regs_fifo
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
-    reg [2-1:0] asked;
+always @(card1_card_core1_regs_fifo2_homing2_negative, card1_card_core1_regs_fifo2_homing2_phase, card1_card_core1_regs_fifo2_homing2_done, card1_card_core1_regs_fifo2_homing2_refused, card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_state, card1_card_core1_regs_fifo2_homing2_not_found) begin: card1_card_core1_regs_fifo2_homing2_show
+    reg [7-1:0] taken;
     reg [6-1:0] word;
-    asked = 2'h0;
-    asked[0] = card1_card_core1_regs_fifo2_homing2_axis;
-    asked[1] = card1_card_core1_regs_fifo2_homing2_negative;
-    card1_card_core1_regs_fifo2_reg_word109_shown = asked;
+    taken = 7'h0;
+    taken[0] = card1_card_core1_regs_fifo2_homing2_axis[0];
+    taken[1] = card1_card_core1_regs_fifo2_homing2_negative;
+    taken[7-1:4] = card1_card_core1_regs_fifo2_homing2_axis;
+    card1_card_core1_regs_fifo2_reg_word113_shown = taken;
     word = 6'h0;
-    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe);
+    word[0] = ((card1_card_core1_regs_fifo2_homing2_state != 3'b000) || card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe);
     word[1] = card1_card_core1_regs_fifo2_homing2_done;
     word[2] = card1_card_core1_regs_fifo2_homing2_not_found;
     word[3] = card1_card_core1_regs_fifo2_homing2_refused;
     word[4+:2] = card1_card_core1_regs_fifo2_homing2_phase;
-    card1_card_core1_regs_fifo2_reg_word110_shown = word;
+    card1_card_core1_regs_fifo2_reg_word114_shown = word;
 end
 
 
@@ -7132,7 +7225,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
     else begin
         card1_card_core1_regs_fifo2_homing2_port_ended <= 0;
         if (card1_card_core1_core_clear) begin
-            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
+            if (card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
@@ -7140,17 +7233,17 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             end
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
-                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_reg_word109__store77_word_value[0];
-                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word109__store77_word_value[1];
+            if (card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe) begin
+                card1_card_core1_regs_fifo2_homing2_axis <= card1_card_core1_regs_fifo2_homing2_asked;
+                card1_card_core1_regs_fifo2_homing2_negative <= card1_card_core1_regs_fifo2_reg_word113__store77_word_value[1];
                 card1_card_core1_regs_fifo2_homing2_done <= 0;
                 card1_card_core1_regs_fifo2_homing2_not_found <= 0;
-                card1_card_core1_regs_fifo2_homing2_refused <= (!card1_card_core1_regs_fifo2_home_idle);
-                card1_card_core1_regs_fifo2_homing2_port_ended <= (!card1_card_core1_regs_fifo2_home_idle);
+                card1_card_core1_regs_fifo2_homing2_refused <= ((!card1_card_core1_regs_fifo2_home_idle) || (!card1_card_core1_regs_fifo2_homing2_valid));
+                card1_card_core1_regs_fifo2_homing2_port_ended <= ((!card1_card_core1_regs_fifo2_home_idle) || (!card1_card_core1_regs_fifo2_homing2_valid));
             end
         end
         else begin
-            if (card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe) begin
+            if (card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe) begin
                 card1_card_core1_regs_fifo2_homing2_refused <= 1;
                 card1_card_core1_regs_fifo2_homing2_port_ended <= 1;
             end
@@ -7176,7 +7269,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
             card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if ((card1_card_core1_regs_fifo2_reg_word109__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle)) begin
+            if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle && card1_card_core1_regs_fifo2_homing2_valid)) begin
                 card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
             end
         end
@@ -7193,7 +7286,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
         end
         else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
             if (card1_card_core1_regs_fifo2_homing2_opened) begin
-                if ((card1_card_core1_regs_fifo2_reg_word113_shown != 0)) begin
+                if ((card1_card_core1_regs_fifo2_reg_word117_shown != 0)) begin
                     card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
                 end
                 else begin
@@ -7287,7 +7380,6 @@ always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo
     card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
     card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
     card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
-    card1_card_core1_regs_fifo2_home_inputs = card1_card_core1_regs_fifo2_conditioning_active[5+:2];
     card1_card_core1_regs_fifo2_drive_cleared = 0;
     if (card1_card_core1_regs_fifo2_guard_stopped) begin
         card1_card_core1_regs_fifo2_drive_cleared = 1;
@@ -7342,17 +7434,17 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word97__store70_word_value, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
-    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word95_shown;
-    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
+    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 0));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word97__store70_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word97__store70_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word101__store70_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
@@ -7361,17 +7453,17 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word109_shown[0], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word98__store71_word_value, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
-    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word96_shown;
-    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+    card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
+    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word109_shown[0] == 1));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word98__store71_word_strobe && (!card1_card_core1_regs_fifo2_halt));
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word98__store71_word_value);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word102__store71_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
@@ -7384,7 +7476,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_status_words2_done_flag <= 0;
         card1_card_core1_regs_fifo2_status_words2_error_before <= 0;
-        card1_card_core1_regs_fifo2_reg_word85_shown <= 0;
+        card1_card_core1_regs_fifo2_reg_word89_shown <= 0;
         card1_card_core1_regs_fifo2_status_words2_busy_before <= 0;
         card1_card_core1_regs_fifo2_status_words2_low_before <= 0;
     end
@@ -7397,9 +7489,9 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_status
             card1_card_core1_regs_fifo2_status_words2_done_flag <= 1;
         end
         card1_card_core1_regs_fifo2_status_words2_error_before <= (card1_card_core1_regs_fifo2_error_code != 0);
-        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word84_shown);
+        card1_card_core1_regs_fifo2_status_words2_low_before <= (card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word88_shown);
         if (card1_card_core1_regs_fifo2_sequencer2_mark_strobe) begin
-            card1_card_core1_regs_fifo2_reg_word85_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
+            card1_card_core1_regs_fifo2_reg_word89_shown <= card1_card_core1_regs_fifo2_sequencer2_mark_tag;
         end
     end
 end
@@ -7416,50 +7508,52 @@ always @(card1_card_core1_regs_fifo2_status_words2_done_flag, card1_card_core1_r
     word[9] = card1_card_core1_regs_fifo2_fifo_full;
     word[10] = card1_card_core1_regs_fifo2_guard_stopped;
     word[32-1:16] = card1_card_core1_regs_fifo2_level_wide;
-    card1_card_core1_regs_fifo2_reg_word81_shown = word;
+    card1_card_core1_regs_fifo2_reg_word85_shown = word;
 end
 
 
-always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word84_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
+always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word88_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
     reg [8-1:0] word;
     word = 8'h0;
     word[0] = (card1_card_core1_regs_fifo2_status_words2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
-    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word84_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
+    word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word88_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_status_words2_error_before));
     word[3] = card1_card_core1_regs_fifo2_sequencer2_mark_strobe;
-    word[4] = card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
+    word[4] = card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped;
     word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
     word[6] = card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
     word[7] = card1_card_core1_regs_fifo2_homing2_port_ended;
-    card1_card_core1_regs_fifo2_reg_word83__store59_word_hw = word;
+    card1_card_core1_regs_fifo2_reg_word87__store59_word_hw = word;
 end
 
 
 
-assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word83_shown & card1_card_core1_regs_fifo2_reg_word82_shown) != 0);
+assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word87_shown & card1_card_core1_regs_fifo2_reg_word86_shown) != 0);
 
 
 always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2_status_words2_assemble_machine
     reg [20-1:0] word;
-    reg [8-1:0] why;
+    reg [16-1:0] why;
     word = 20'h0;
-    word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
-    word[8+:7] = card1_card_core1_regs_fifo2_conditioning_active;
+    word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw[7-1:0];
+    word[8+:7] = card1_card_core1_regs_fifo2_conditioning_active[7-1:0];
     word[16] = card1_card_core1_regs_fifo2_guard_stopped;
     word[17] = motor_drive_enable;
     word[18] = card1_card_core1_regs_fifo2_settled;
     word[19] = card1_card_core1_regs_fifo2_guard_stopping;
-    card1_card_core1_regs_fifo2_reg_word103_shown = word;
-    why = 8'h0;
+    card1_card_core1_regs_fifo2_reg_word107_shown = word;
+    why = 16'h0;
     why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
     why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
-    card1_card_core1_regs_fifo2_reg_word104_shown = why;
+    card1_card_core1_regs_fifo2_reg_word108_shown = why;
+    card1_card_core1_regs_fifo2_reg_word121_shown = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
+    card1_card_core1_regs_fifo2_reg_word122_shown = card1_card_core1_regs_fifo2_conditioning_active;
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown = card1_card_core1_regs_fifo2_pulse_out2_axis_x_position[32-1:0];
-assign card1_card_core1_regs_fifo2_reg_word87_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word90_shown = card1_card_core1_regs_fifo2_pulse_out2_axis_x_position[32-1:0];
+assign card1_card_core1_regs_fifo2_reg_word91_shown = card1_card_core1_regs_fifo2_pos_y_snapshot[32-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_dda_ys, card1_card_core1_regs_fifo2_sequencer2_dda_ye, card1_card_core1_regs_fifo2_sequencer2_dda_xs, card1_card_core1_regs_fifo2_sequencer2_dda_xe) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_magnitudes

@@ -8,8 +8,9 @@ steps/s); every value is checked before any register is written.
 """
 from host.transports.base import POLL_SECONDS
 from models import registers as regmap
+from models.axes import AXIS_NAMES
 
-AXES = ("X", "Y")
+ANY_AXIS_VERSION = (2, 3)   # HOME.AXIS_INDEX: Z, A, B, C; before it HOME.AXIS named X or Y only
 DIRECTIONS = ("positive", "negative")   # where the switch is
 
 
@@ -47,7 +48,7 @@ def home_settings(clock_hz, seek_rate, release_rate, backoff, search):
 
 def home(card, axis, direction="negative", seek_rate=5000.0, release_rate=1000.0, backoff=0, search=65535,
          timeout=60.0):
-    """Home ``axis`` (``"X"``/``"Y"``) with its switch at the ``direction``
+    """Home ``axis`` (``"X"``, ``"Y"``, ``"Z"``, ... one the card has) with its switch at the ``direction``
     end: seek at ``seek_rate``, step off at ``release_rate``, zero the
     position where the switch releases, go on ``backoff`` steps.  Returns
     the position (that axis reads -backoff towards the switch's side).
@@ -55,15 +56,20 @@ def home(card, axis, direction="negative", seek_rate=5000.0, release_rate=1000.0
     MachineStopped if the guard stops it, TimeoutError after ``timeout`` s
     of card time."""
     name = str(axis).upper()
-    if name not in AXES:
-        raise ValueError(f"HOME: axis {axis!r} is not one of {', '.join(AXES)}")
+    axes = AXIS_NAMES[:card.identity.axes] if card.identity.version >= ANY_AXIS_VERSION else AXIS_NAMES[:2]
+    if name not in axes:
+        raise ValueError(f"HOME: axis {axis!r} is not one of {', '.join(axes)} (the card's axes; register map "
+                         f"{ANY_AXIS_VERSION[0]}.{ANY_AXIS_VERSION[1]} homes those beyond X and Y)")
     if direction not in DIRECTIONS:
         raise ValueError(f"HOME: direction {direction!r} is not one of {', '.join(DIRECTIONS)}")
     settings = home_settings(card.identity.clock_hz, seek_rate, release_rate, backoff, search)
     card.check()
     for register, value in settings.items():
         card.write(register, value)
-    card.write("HOME", regmap.field_of("HOME", AXIS=AXES.index(name), NEGATIVE=int(direction == "negative")))
+    index = AXIS_NAMES.index(name)
+    # X and Y through AXIS, as every 2.x card takes them; the others through AXIS_INDEX
+    which = dict(AXIS=index) if index < 2 else dict(AXIS_INDEX=index)
+    card.write("HOME", regmap.field_of("HOME", **which, NEGATIVE=int(direction == "negative")))
     deadline = card.transport.now() + timeout
     while True:
         word = card.read("HOME_STATUS")

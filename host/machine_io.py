@@ -8,8 +8,10 @@ card's ``read``, ``write``, ``field``, ``clocks``, ``check``, ``position``,
 import math
 
 from host import homing
+from host.homing import ANY_AXIS_VERSION as INPUT_WORDS_VERSION   # 2.3: INPUT_ACTIVE, INPUT_RAW, AXIS_INDEX
 from host.transports.base import POLL_SECONDS
 from models import registers as regmap
+from models.axes import AXIS_NAMES
 
 
 class MachineStopped(RuntimeError):
@@ -79,13 +81,21 @@ class MachineIO:
         self.write("WATCHDOG", clocks)
         return clocks
 
+    def _input_words(self):
+        """(active, raw): every input of the card, bit n INPUT_NAMES[n] (INPUT_ACTIVE and INPUT_RAW; a
+        card before register map 2.3 has X's and Y's only, in MACHINE_STATUS)."""
+        if self.identity.version >= INPUT_WORDS_VERSION:
+            return self.read("INPUT_ACTIVE"), self.read("INPUT_RAW")
+        status = self.read("MACHINE_STATUS")
+        return tuple(regmap.field_value("MACHINE_STATUS", name, status) for name in ("ACTIVE", "RAW"))
+
     def estop_state(self):
         """True while the (filtered) E-stop input is active."""
         return bool(self.field("MACHINE_STATUS", "ACTIVE") & 1 << regmap.INPUT_NAMES.index("ESTOP"))
 
     def limits(self):
-        """The names of the limit inputs active now (filtered), e.g. ``("LIMIT_POS_X",)``."""
-        active = self.field("MACHINE_STATUS", "ACTIVE")
+        """The names of the limit inputs active now (filtered), of every axis, e.g. ``("LIMIT_POS_Z",)``."""
+        active, _ = self._input_words()
         return tuple(name for bit, name in enumerate(regmap.INPUT_NAMES)
                      if name.startswith("LIMIT") and active >> bit & 1)
 
@@ -121,7 +131,7 @@ class MachineIO:
         ``drive_enable`` (the pin and MACHINE_CONTROL's request), ``hold``,
         ``watchdog`` (clocks left, 0: off) and ``homing`` (HOME_STATUS)."""
         status, control = self.read("MACHINE_STATUS"), self.read("MACHINE_CONTROL")
-        active, raw = (regmap.field_value("MACHINE_STATUS", name, status) for name in ("ACTIVE", "RAW"))
+        active, raw = self._input_words()
         home = self.read("HOME_STATUS")
         homing = {name: regmap.field_value("HOME_STATUS", name, home) for name in ("BUSY", "DONE", "NOT_FOUND",
                                                                                   "REFUSED")}
@@ -136,7 +146,14 @@ class MachineIO:
                   bool(regmap.field_value("MACHINE_STATUS", "HELD", status))),
             watchdog=self.read("WATCHDOG"),
             homing=dict(homing, PHASE=regmap.HOME_PHASES[regmap.field_value("HOME_STATUS", "PHASE", home)],
-                        AXIS="XY"[self.field("HOME", "AXIS")]))
+                        AXIS=self._homed_axis()))
+
+    def _homed_axis(self):
+        """The axis HOME asked last, by name (HOME.AXIS_INDEX; before register map 2.3 HOME.AXIS)."""
+        if self.identity.version >= INPUT_WORDS_VERSION:
+            index = self.field("HOME", "AXIS_INDEX")   # a refused HOME may have named 6 or 7
+            return AXIS_NAMES[index] if index < len(AXIS_NAMES) else str(index)
+        return AXIS_NAMES[self.field("HOME", "AXIS")]
 
     def home(self, axis, direction="negative", **settings):
         """HOME one axis; the position (``host.homing.home`` says how)."""

@@ -13,7 +13,6 @@ from models.card_model import FeedRateModel
 
 REASON = {name: code for code, name in enumerate(regmap.STOP_REASONS)}
 INPUT = {name: bit for bit, name in enumerate(regmap.INPUT_NAMES)}
-LIMIT_BITS = {("x", True): 0, ("x", False): 1, ("y", True): 2, ("y", False): 3}  # STOP_REASON.LIMITS
 
 
 class InputFilterModel:
@@ -56,7 +55,7 @@ class MachineGuardModel:
 
     A stop latches at the edge after its cause: the E-stop input active, the
     watchdog's count reaching 0, or a step request towards an active limit
-    (that request itself is dropped).  While stopped, or while the E-stop
+    of any axis (that request itself is dropped, with every other axis's).  While stopped, or while the E-stop
     input is active, no step request passes (``halt``).  ``clear_stop``
     releases the latch unless the E-stop input is active.  DRIVE_ENABLE
     follows ``drive_request`` one clock late, low while stopped or E-stop,
@@ -82,18 +81,18 @@ class MachineGuardModel:
         return self.stopped or bool(active >> INPUT["ESTOP"] & 1)
 
     def limit_hits(self, active, steps, dirs):
-        """STOP_REASON.LIMITS bits of the requests that step towards an active limit."""
+        """STOP_REASON.LIMITS bits of the requests that step towards an active limit: ``steps`` and
+        ``dirs`` (1: positive) one an axis, X first, as many as the card has."""
         hits = 0
-        for axis, step, positive in (("x", steps[0], dirs[0]), ("y", steps[1], dirs[1])):
-            name = f"LIMIT_{'POS' if positive else 'NEG'}_{axis.upper()}"
-            if step and active >> INPUT[name] & 1:
-                hits |= 1 << LIMIT_BITS[(axis, positive)]
+        for axis, (step, positive) in enumerate(zip(steps, dirs)):
+            if step and active >> regmap.limit_input(axis, positive) & 1:
+                hits |= 1 << regmap.limit_bit(axis, positive)
         return hits
 
     def granted(self, active, steps, dirs, ramp=False):
         """The step requests that pass to the pulse outputs in this clock."""
         if self.halt(active) or (self.limit_hits(active, steps, dirs) and not ramp):
-            return (False, False)
+            return (False,) * len(steps)
         return tuple(steps)
 
     def clock(self, active=0, steps=(False, False), dirs=(False, False), drive_request=False,

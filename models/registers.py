@@ -62,12 +62,16 @@ VERSIONS = (
     (0x0202, "BAR2 grows to 4 KiB: a register block per axis at 0x100 + 0x40 * axis (POS, PULSE_PERIOD, "
              "PULSE_COUNT; X's and Y's are POS_X, PULSE_PERIOD_X, ... again), direct pulses on every axis; "
              "a POS_X read snapshots every other axis's position; DIR_POLARITY.Z .. C"),
+    (0x0203, "the limit and home inputs of every axis (INPUT_POLARITY bits 7..18: LIMIT_POS_Z, LIMIT_NEG_Z, "
+             "HOME_Z, then A, B, C's), INPUT_RAW and INPUT_ACTIVE (every input; MACHINE_STATUS keeps X's and "
+             "Y's), STOP_REASON.LIMITS widened to bits 15:4; HOME.AXIS_INDEX homes any axis (docs/machine.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
 RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
 STEP_WIDTH_RESET = 1      # STEP_WIDTH's reset, and STEP_SPACE's: the timing of the cards before STEP_SPACE
 STEP_MODES = ("STEP_DIR", "UP_DOWN", "QUADRATURE")   # STEP_MODE.MODE codes
+BAR0_AXES = 2   # X and Y: their block registers are BAR0's (POS_X, ...), their inputs the first XY_INPUTS
 
 
 @dataclass(frozen=True)
@@ -153,16 +157,24 @@ _INT_FIELDS = (
     Field("MARK", 3, 1, "a MARK command was reached (MARK_TAG says which)"),
     Field("CLAMPED", 4, 1, "a register write was out of range and was clamped"),
     Field("STOPPED", 5, 1, "the machine guard stopped the card (STOP_REASON says why)"),
-    Field("INPUT", 6, 1, "a filtered machine input changed (MACHINE_STATUS.ACTIVE)"),
+    Field("INPUT", 6, 1, "a filtered machine input changed (INPUT_ACTIVE)"),
     Field("HOMED", 7, 1, "a HOME ended: done, not found or refused (HOME_STATUS says which)"),
 )
 
-# The machine inputs, bit n of INPUT_POLARITY and of MACHINE_STATUS's RAW and ACTIVE.
+# The machine inputs, bit n of INPUT_POLARITY, INPUT_RAW and INPUT_ACTIVE (MACHINE_STATUS's RAW and ACTIVE:
+# the first XY_INPUTS): the E-stop and X's and Y's as the two-axis card had them, then every further axis's
+# three.  The table describes the largest build; a card of N axes has the inputs of its axes (``input_names``).
 _INPUT_TEXT = (("ESTOP", "emergency stop"), ("LIMIT_POS_X", "X limit, positive end"),
                ("LIMIT_NEG_X", "X limit, negative end"), ("LIMIT_POS_Y", "Y limit, positive end"),
-               ("LIMIT_NEG_Y", "Y limit, negative end"), ("HOME_X", "X home switch"), ("HOME_Y", "Y home switch"))
+               ("LIMIT_NEG_Y", "Y limit, negative end"), ("HOME_X", "X home switch"), ("HOME_Y", "Y home switch")
+               ) + tuple(item for name in AXIS_NAMES[BAR0_AXES:] for item in (
+                   (f"LIMIT_POS_{name}", f"{name} limit, positive end"),
+                   (f"LIMIT_NEG_{name}", f"{name} limit, negative end"), (f"HOME_{name}", f"{name} home switch")))
 INPUT_NAMES = tuple(name for name, _ in _INPUT_TEXT)
-LIMIT_NAMES = INPUT_NAMES[1:5]  # STOP_REASON.LIMITS bit n: LIMIT_NAMES[n]
+XY_INPUTS = 7   # the two-axis card's inputs, those MACHINE_STATUS's RAW and ACTIVE carry
+INPUTS_PER_AXIS = 3   # LIMIT_POS, LIMIT_NEG, HOME of an axis from Z on
+# STOP_REASON.LIMITS bit n: LIMIT_NAMES[n], bit 2 * axis the axis's positive end, 2 * axis + 1 its negative
+LIMIT_NAMES = tuple(f"LIMIT_{end}_{name}" for name in AXIS_NAMES for end in ("POS", "NEG"))
 STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT")  # STOP_REASON.REASON codes
 _REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
 WATCHDOG_BITS = 24
@@ -263,8 +275,10 @@ REGISTERS = (
               "0 ramps it up again; the path continues exactly"),
     )),
     Register("MACHINE_STATUS", 0x64, "RO", 0, "the machine's inputs and the guard", (
-        Field("RAW", 0, 7, "input pins after the synchroniser, as wired (bit n: input n of INPUT_POLARITY)"),
-        Field("ACTIVE", 8, 7, "inputs filtered, polarity applied: 1 active (bit n: input n)"),
+        Field("RAW", 0, XY_INPUTS, "ESTOP and X's and Y's input pins after the synchroniser, as wired (bit n: "
+              "input n of INPUT_POLARITY; every input: INPUT_RAW)"),
+        Field("ACTIVE", 8, XY_INPUTS, "ESTOP and X's and Y's inputs filtered, polarity applied: 1 active "
+              "(bit n: input n; every input: INPUT_ACTIVE)"),
         Field("STOPPED", 16, 1, "the guard holds the card stopped (STOP_REASON says why)"),
         Field("DRIVE_ENABLE", 17, 1, "the DRIVE_ENABLE pin"),
         Field("HELD", 18, 1, "the path's rate is zero on a feed hold or a decelerated stop and its last "
@@ -275,10 +289,11 @@ REGISTERS = (
     Register("STOP_REASON", 0x68, "RO", 0,
              "why the guard stops or stopped the card (0 when neither STOPPING nor STOPPED)", (
         Field("REASON", 0, 2, f"{_REASON_CODES}"),
-        Field("LIMITS", 4, 4, "LIMIT: the limits stepped towards (bit n: " + ", ".join(
+        Field("LIMITS", 4, len(LIMIT_NAMES), "LIMIT: the limits stepped towards (bit n: " + ", ".join(
             f"{bit} {name}" for bit, name in enumerate(LIMIT_NAMES)) + ")"),
     )),
-    Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low",
+    Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low (a card of "
+             "fewer axes has the bits of its axes' inputs only: the others read 0, writes to them are ignored)",
              tuple(Field(name, bit, 1, f"1: the {text} input is active low")
                    for bit, (name, text) in enumerate(_INPUT_TEXT))),
     Register("INPUT_FILTER", 0x70, "RW", 3,
@@ -293,14 +308,18 @@ REGISTERS = (
                   f"above {(1 << WATCHDOG_BITS) - 1} loads {(1 << WATCHDOG_BITS) - 1}"),
              minimum=0, maximum=(1 << WATCHDOG_BITS) - 1),
     Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
-        Field("AXIS", 0, 1, "0: X, 1: Y"),
+        Field("AXIS", 0, 1, "written with AXIS_INDEX 0 (as a two-axis host writes it): 0 homes X, 1 Y; reads the "
+              "low bit of the axis asked"),
         Field("NEGATIVE", 1, 1, "1: the switch is towards negative positions"),
+        Field("AXIS_INDEX", 4, 3, "the axis to home, 1 Y, 2 Z, 3 A, 4 B, 5 C (0: the one AXIS names); an axis the "
+              "card lacks is REFUSED; reads the axis asked"),
     )),
     Register("HOME_STATUS", 0x80, "RO", 0, "the homing's state", (
         Field("BUSY", 0, 1, "homing under way (from the clock the HOME write is taken)"),
         Field("DONE", 1, 1, "the last HOME ended with the position zeroed at the release point"),
         Field("NOT_FOUND", 2, 1, "the switch did not trip (or release) within HOME_SEARCH steps"),
-        Field("REFUSED", 3, 1, "a HOME came while the card was not idle, was stopped, or was homing"),
+        Field("REFUSED", 3, 1, "a HOME came while the card was not idle, was stopped, or was homing, or named "
+              "an axis the card lacks"),
         Field("PHASE", 4, 2, ", ".join(f"{code} {name}" for code, name in enumerate(HOME_PHASES))),
     )),
     Register("HOME_SEEK_PERIOD", 0x84, "RW", 100, "clocks between steps towards the home switch",
@@ -323,6 +342,13 @@ REGISTERS = (
                   "be high, a change a step period after the last); every mode keeps STEP_WIDTH, "
                   "STEP_SPACE, and DIR_HOLD + DIR_SETUP at a reversal; change it only while no step is "
                   "queued"), minimum=0, maximum=2),
+    Register("INPUT_RAW", 0x9C, "RO", 0, "every input pin after the synchroniser, as wired (the bits of "
+             "inputs the card lacks read 0)",
+             tuple(Field(name, bit, 1, f"the {text} pin") for bit, (name, text) in enumerate(_INPUT_TEXT))),
+    Register("INPUT_ACTIVE", 0xA0, "RO", 0, "every input filtered, polarity applied: 1 active (the bits of "
+             "inputs the card lacks read 0)",
+             tuple(Field(name, bit, 1, f"1: the {text} input is active")
+                   for bit, (name, text) in enumerate(_INPUT_TEXT))),
 )
 
 # The per-axis blocks, in BAR2 only (the I/O BAR0 keeps to PCI's 256 bytes): block i, for axis i,
@@ -341,7 +367,6 @@ AXIS_REGISTERS = (
              _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
                   signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
 )
-BAR0_AXES = 2   # X and Y: their block registers are BAR0's (POS_X, ...)
 
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
 SET_TARGETS = {r.set_index: r for r in REGISTERS if r.set_index is not None}
@@ -381,6 +406,40 @@ def axis_aliases():
     """{BAR2 offset: BAR0 offset} of X's and Y's block registers, which are BAR0's."""
     return {axis_offset(spec.name, axis): axis_register(spec.name, axis).offset
             for axis in range(BAR0_AXES) for spec in AXIS_REGISTERS}
+
+
+_INPUT_REGISTERS = ("INPUT_POLARITY", "INPUT_RAW", "INPUT_ACTIVE")
+
+
+def input_names(axes):
+    """The machine inputs a card of ``axes`` axes has, bit n input n: ESTOP, X's and Y's, then Z's, ..."""
+    if not BAR0_AXES <= axes <= len(AXIS_NAMES):
+        raise ValueError(f"axes {axes} is not {BAR0_AXES}..{len(AXIS_NAMES)}")
+    return INPUT_NAMES[:XY_INPUTS + INPUTS_PER_AXIS * (axes - BAR0_AXES)]
+
+
+def limit_input(axis, positive):
+    """The input index (INPUT_NAMES) of axis ``axis``'s limit switch at its positive or negative end."""
+    return INPUT_NAMES.index(f"LIMIT_{'POS' if positive else 'NEG'}_{AXIS_NAMES[axis]}")
+
+
+def home_input(axis):
+    """The input index (INPUT_NAMES) of axis ``axis``'s home switch."""
+    return INPUT_NAMES.index(f"HOME_{AXIS_NAMES[axis]}")
+
+
+def limit_bit(axis, positive):
+    """The STOP_REASON.LIMITS bit of axis ``axis``'s limit at its positive or negative end."""
+    return LIMIT_NAMES.index(f"LIMIT_{'POS' if positive else 'NEG'}_{AXIS_NAMES[axis]}")
+
+
+def built_register(reg, axes):
+    """``reg`` as a card of ``axes`` axes builds it: the input registers keep the fields of its
+    inputs only (the others read 0 and ignore writes), every other register is the table's."""
+    if reg.name not in _INPUT_REGISTERS:
+        return reg
+    names = input_names(axes)
+    return replace(reg, fields=tuple(item for item in reg.fields if item.name in names))
 
 
 def register(name):

@@ -26,10 +26,11 @@ import json
 from dataclasses import asdict, dataclass, field
 
 from models import registers as regmap
+from models.axes import AXIS_NAMES
 
-INPUTS = regmap.INPUT_NAMES
+INPUTS = regmap.input_names(2)      # the machine has X and Y: the two-axis card's inputs
 SWITCH_INPUTS = INPUTS[1:]          # every input but the E-stop can have a switch
-AXIS_OF = {name: "XY".index(name[-1]) for name in SWITCH_INPUTS}
+AXIS_OF = {name: AXIS_NAMES.index(name.rsplit("_", 1)[1]) for name in SWITCH_INPUTS}
 MASK32 = 0xFFFFFFFF
 
 

@@ -88,7 +88,8 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
                          f"the build says {build.axes}")
     fifo_depth, axes = build.fifo_depth, build.axes
     # BAR0's registers, then those only the per-axis blocks of Z, A, ... have (models/registers.py)
-    specs = regmap.REGISTERS + regmap.axis_registers(axes)
+    # (the input registers with the bits of this build's inputs: ``built_register``)
+    specs = tuple(regmap.built_register(r, axes) for r in regmap.REGISTERS) + regmap.axis_registers(axes)
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
     read_waited, read_word = Signal(bool(0)), Signal(intbv(0)[32:])
@@ -130,11 +131,9 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     requested = ConcatSignal(*reversed([requests.step(axis) for axis in range(axes)]))
     halt, pulse_clear, clear_stop, releasing = (Signal(bool(0)) for _ in range(4))
     home_idle, direct_clear = Signal(bool(0)), Signal(bool(0))
-    home_zero, home_inputs = Signal(intbv(0)[2:]), Signal(intbv(0)[2:])
+    home_zero = Signal(intbv(0)[axes:])
     step_mode = values["STEP_MODE"]   # named at this level, as the formal harnesses know it
-    # homing zeroes X or Y (HOME.AXIS): zero_axes widens its bits to every axis's
-    zero = home_zero if axes == len(home_zero) else Signal(intbv(0)[axes:])
-    outputs = PulseControl(axes, clear=pulse_clear, clear_position=clear_position, zero=zero,
+    outputs = PulseControl(axes, clear=pulse_clear, clear_position=clear_position, zero=home_zero,
                            width=values["STEP_WIDTH"], space=values["STEP_SPACE"], mode=step_mode,
                            setup=values["DIR_SETUP"], hold=values["DIR_HOLD"],
                            **{f"polarity_{name.lower()}": values["DIR_POLARITY"](axis)
@@ -174,13 +173,16 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         units.append(direct_pulse(clock, reset, command=direct[axis], out=direct_out[axis]))
     units.append(axis_block(clock, reset, axis_regs, axes=axes))
     units.append(pulse_out(clock, reset, request=granted, control=outputs, pins=pins, position=position))
-    conditioning = InputConditioning(pins=ConcatSignal(*reversed(pins.inputs())), polarity=values["INPUT_POLARITY"],
+    conditioning = InputConditioning(axes, pins=ConcatSignal(*reversed(pins.inputs())),
+                                     polarity=values["INPUT_POLARITY"],
                                      samples=values["INPUT_FILTER"], tick=values["INPUT_TICK"])
-    guard = MachineGuard(active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
+    guard = MachineGuard(axes, active=conditioning.active, drive_request=values["MACHINE_CONTROL"](drive_bit),
                          clear_stop=clear_stop, held=settled, pulsing=outputs.pulsing,
                          watchdog_load=strobes["WATCHDOG"], watchdog_timeout=values["WATCHDOG"], halt=halt,
                          drive_enable=pins.drive_enable, watchdog_left=watchdog_left)
-    home = Homing(start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
+    # every axis's filtered home input, bit i axis i's
+    home_inputs = ConcatSignal(*reversed([conditioning.active(regmap.home_input(axis)) for axis in range(axes)]))
+    home = Homing(axes, start=strobes["HOME"], request=values["HOME"], seek_period=values["HOME_SEEK_PERIOD"],
                   release_period=values["HOME_RELEASE_PERIOD"], backoff=values["HOME_BACKOFF"],
                   search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
                   outputs_active=out_active, zero=home_zero, taken=hw["HOME"], state=hw["HOME_STATUS"],
@@ -194,7 +196,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     enable_bit, mode_bit = _bit("CONTROL", "ENABLE"), _bit("CONTROL", "MODE")
     reset_bit, clear_bit, zero_bit, release_bit = (_bit("COMMAND", f) for f in ("SOFT_RESET", "CLEAR_ERROR",
                                                                                 "CLEAR_POSITION", "CLEAR_STOP"))
-    home_x, estop = regmap.INPUT_NAMES.index("HOME_X"), regmap.INPUT_NAMES.index("ESTOP")
+    estop = regmap.INPUT_NAMES.index("ESTOP")
     command_offset = regmap.offset("COMMAND")
 
     @always_comb
@@ -265,7 +267,6 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         # HOME starts only with nothing queued, moving or stopped; its cut clears the direct pulses
         home_idle.next = not any_busy and fifo_empty and not guard.stopped and not halt
         direct_clear.next = core_clear or home.cut
-        home_inputs.next = conditioning.active[home_x + 2:home_x]
         # a stop clears MACHINE_CONTROL.DRIVE_ENABLE and holds it at 0: CLEAR_STOP does not re-energise
         drive_cleared.next = 0
         if guard.stopped:
@@ -306,12 +307,6 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     def copy_level():   # a FIFO of 2**15 words: the level fills the field
         level_wide.next = fifo_level
 
-    zero_pad = axes - len(home_zero)
-
-    @always_comb
-    def zero_axes():
-        zero.next = concat(intbv(0)[zero_pad:], home_zero)
-
     direct_request_x, direct_request_y = direct_request[:2]
     direct_dir_x, direct_dir_y = direct_dir[:2]
 
@@ -340,22 +335,21 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
 
     units += [decode_bus, answer_bus, read_stage, write_stage, control_bits, soft_reset, fifo_emptying, outputs_before,
               pulse_activity, merge_requests, widen_level if level_pad else copy_level]
-    if zero is not home_zero:
-        units.append(zero_axes)
-    home_axis = hw["HOME"](_bit("HOME", "AXIS"))
+    index = regmap.register("HOME").field("AXIS_INDEX")
+    home_axis = hw["HOME"](index.lsb + index.width, index.lsb)   # the homed axis, as HOME reads it
     for axis, name in enumerate(axis_names):
         units.append(pulse_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"], halt,
                                   values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))
         if axis >= 2:   # X's and Y's: merge_requests
             units.append(_axis_request(steps.step(axis), steps.dir(axis), direct_out[axis], requests.step(axis),
                                        requests.dir(axis)))
-    status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
+    status = StatusWords(axes, busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
                          int_enable=values["INT_ENABLE"], position_x=position.x, position_y=pos_y_snapshot,
                          status=hw["STATUS"], int_set=hw["INT_STATUS"], mark_tag=hw["MARK_TAG"],
                          machine_status=hw["MACHINE_STATUS"], stop_reason=hw["STOP_REASON"], pos_x=hw["POS_X"],
-                         pos_y=hw["POS_Y"], irq=irq)
+                         pos_y=hw["POS_Y"], input_raw=hw["INPUT_RAW"], input_active=hw["INPUT_ACTIVE"], irq=irq)
     units.append(status_words(clock, reset, words=status, guard=guard, conditioning=conditioning, mark=mark))
     return units
 

@@ -45,7 +45,8 @@ module machine_harness #(
     wire [3:0] machine_guard0_guard_limits;
     wire [15:0] feed_rate0_rate;
     wire [2:0] homing0_state;
-    wire homing0_axis, homing0_refused, homing0_not_found;
+    wire [2:0] homing0_axis;   // HOME.AXIS_INDEX as taken: 0 X, 1 Y on the two-axis card
+    wire homing0_refused, homing0_not_found;
     wire [1:0] home_zero;
     wire requests_step_x, requests_step_y, requests_dir_x, requests_dir_y;
     wire machine_guard0_grant_x_granted_step, machine_guard0_grant_y_granted_step;

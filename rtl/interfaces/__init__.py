@@ -12,11 +12,10 @@ has tri-states.  All PCI ``*_out`` values keep the bus polarity (active-low
 lines are 0 when asserted).
 """
 from rtl.interfaces.bundle import axis_suffixes, card_reset, named
-from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X,
-                                 INPUT_LIMIT_POS_Y, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
+from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
                                  TIMING_BITS, AxisBlock, CommandHeader, DirectPulseCommand, FeedPort, FifoRead, MarkPort,
                                  MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
-                                 SequencerControl, SetPort, StatusWords, StepPositions, StepRequest)
+                                 SequencerControl, SetPort, StatusWords, StepPositions, StepRequest, machine_inputs)
 from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxesCommand, AxisPulses, DdaMove, DdaPlan, DdaPort,
                                 DdaRoot, DdaStep, LinearPort, SetupControl, SetupSequence, axis_index_bits)
 from rtl.interfaces.encoder import EncoderPins, EncoderPort, FollowingErrorPort, ProbePort, Timestamp
@@ -35,7 +34,7 @@ __all__ = [
     "PULSE_COUNT_BITS", "TIMING_BITS", "AxisBlock", "CommandHeader", "FifoRead", "SequencerControl", "PulseCommand",
     "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
-    "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
-    "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y", "EncoderPins", "EncoderPort", "Timestamp",
+    "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "machine_inputs",
+    "EncoderPins", "EncoderPort", "Timestamp",
     "FollowingErrorPort", "ProbePort"
 ]

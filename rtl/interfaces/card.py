@@ -16,8 +16,9 @@ class MotorPins:
     ``step_z``, ``dir_z``, ... as ``models/axes.py`` names them; levels,
     straight from flip-flops; ``dir_*`` already carries the polarity),
     ``drive_enable`` (out, from a flip-flop: the drives may run), and the
-    machine's inputs, in the order of ``MACHINE_INPUTS`` (E-stop, the limit
-    switches, the home switches: pin levels as wired, asynchronous;
+    machine's inputs of its axes, in the order of ``MACHINE_INPUTS`` (E-stop, X's
+    and Y's limit and home switches, then ``limit_pos_z``, ``limit_neg_z``,
+    ``home_z``, ... of every further axis: pin levels as wired, asynchronous;
     ``rtl/machine/input_filter.py`` conditions them)."""
 
     def __init__(self, axes=AXES.default):
@@ -26,7 +27,7 @@ class MotorPins:
             setattr(self, f"step_{suffix}", Signal(bool(0)))
             setattr(self, f"dir_{suffix}", Signal(bool(0)))
         self.drive_enable = Signal(bool(0))
-        for name in MACHINE_INPUTS:
+        for name in machine_inputs(axes):
             setattr(self, name, Signal(bool(0)))
 
     def step(self, axis):
@@ -39,12 +40,17 @@ class MotorPins:
 
     def inputs(self):
         """The input pins, in the order of ``MACHINE_INPUTS``."""
-        return [getattr(self, name) for name in MACHINE_INPUTS]
+        return [getattr(self, name) for name in machine_inputs(self.axes)]
 
 
-# The machine's inputs, bit n of INPUT_POLARITY and MACHINE_STATUS is input n.
-MACHINE_INPUTS = tuple(f.name.lower() for f in regmap.register("INPUT_POLARITY").fields)
-INPUT_ESTOP, INPUT_LIMIT_POS_X, INPUT_LIMIT_NEG_X, INPUT_LIMIT_POS_Y, INPUT_LIMIT_NEG_Y = range(5)
+# The machine's inputs of the largest build, bit n of INPUT_POLARITY, INPUT_RAW and INPUT_ACTIVE is input n.
+MACHINE_INPUTS = tuple(name.lower() for name in regmap.INPUT_NAMES)
+INPUT_ESTOP = regmap.INPUT_NAMES.index("ESTOP")
+
+
+def machine_inputs(axes):
+    """The input pins' names of a card of ``axes`` axes, in the order of ``MACHINE_INPUTS``."""
+    return MACHINE_INPUTS[:len(regmap.input_names(axes))]
 
 
 # Widths of the bundles below, each from the table that defines it.
@@ -324,10 +330,12 @@ class StatusWords:
     (the live X count) and ``position_y`` (the Y count captured with the last
     POS_X read); the unit drives ``status`` (STATUS), ``int_set`` (the
     INT_STATUS bits to set), ``mark_tag``, ``machine_status``,
-    ``stop_reason``, ``pos_x``, ``pos_y`` (what those registers read) and
-    ``irq`` (INTA#, active high: an enabled INT_STATUS bit is set)."""
+    ``stop_reason``, ``pos_x``, ``pos_y``, ``input_raw``, ``input_active`` (what those registers
+    read; the input words as wide as a card of ``axes`` axes has inputs) and ``irq`` (INTA#, active
+    high: an enabled INT_STATUS bit is set)."""
 
-    def __init__(self, **given):
+    def __init__(self, axes=AXES.default, **given):
+        inputs = len(machine_inputs(axes))
         def word(name):
             return Signal(intbv(0)[regmap.register(name).width:])
         step_count = dict(min=-(1 << 31), max=1 << 31)
@@ -339,4 +347,5 @@ class StatusWords:
                position_x=Signal(modbv(0, **step_count)), position_y=Signal(modbv(0, **step_count)),
                status=word("STATUS"), int_set=word("INT_STATUS"), mark_tag=word("MARK_TAG"),
                machine_status=word("MACHINE_STATUS"), stop_reason=word("STOP_REASON"), pos_x=word("POS_X"),
-               pos_y=word("POS_Y"), irq=Signal(bool(0)))
+               pos_y=word("POS_Y"), input_raw=Signal(intbv(0)[inputs:]), input_active=Signal(intbv(0)[inputs:]),
+               irq=Signal(bool(0)))

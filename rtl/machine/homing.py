@@ -2,6 +2,7 @@
 from myhdl import Signal, always_comb, always_seq, block, concat, enum, intbv, modbv
 
 from models import registers as regmap
+from models.parameters import AXES
 from rtl.interfaces import Homing, card_reset
 
 PHASE_IDLE, PHASE_SEEK, PHASE_RELEASE, PHASE_BACKOFF = (regmap.HOME_PHASES.index(name)
@@ -13,8 +14,9 @@ def homing(clock, reset, port):
     """One HOME at a time, on one axis, through that axis's direct pulses.
 
     Ports (``rtl/interfaces/``): ``port`` (``Homing``).  A ``start`` while
-    ``idle`` homes the axis ``request`` names (bit 0: 0 X, 1 Y; bit 1
-    NEGATIVE: the switch is towards negative positions):
+    ``idle`` homes the axis ``request`` names (AXIS_INDEX, 0 X .. 5 C, or
+    when it is 0 AXIS, 0 X or 1 Y; NEGATIVE: the switch is towards negative
+    positions); one the card lacks (``port.axes``) is REFUSED:
 
     1. SEEK: ``load`` HOME_SEARCH steps towards the switch at
        ``seek_period``; when the filtered switch is active, ``cut`` them.
@@ -51,7 +53,15 @@ def homing(clock, reset, port):
     """
     state_t = enum("IDLE", "SEEK_LOAD", "SEEK", "TURN", "RELEASE", "BACKOFF", "SETTLE")
     state = Signal(state_t.IDLE)
-    axis, negative = Signal(bool(0)), Signal(bool(0))
+    home_spec = regmap.register("HOME")
+    index_field = home_spec.field("AXIS_INDEX")
+    axes = port.axes
+    if len(port.home) != axes or len(port.zero) != axes:
+        raise ValueError(f"homing: home and zero of {len(port.home)}, {len(port.zero)} bits for {axes} axes")
+    axis, asked = (Signal(intbv(0)[index_field.width:]) for _ in range(2))
+    negative, valid = Signal(bool(0)), Signal(bool(0))
+    slot_bits = max(1, (axes - 1).bit_length())
+    slot = Signal(intbv(0)[slot_bits:])   # the homed axis as an index of ``home`` and ``zero``, as wide as they ask
     done, not_found, refused = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     switch, positive, seeking, seek_next = (Signal(bool(0)) for _ in range(4))
     opened, gave_up, finished = (Signal(bool(0)) for _ in range(3))   # opened: the switch released in RELEASE
@@ -63,13 +73,30 @@ def homing(clock, reset, port):
     signed_count = Signal(modbv(0)[count_bits:])
     backoff_pad, search_pad = count_bits - len(port.backoff), count_bits - len(port.search)
     phase = Signal(intbv(0)[2:])
-    axis_bit, negative_bit = (regmap.register("HOME").field(name).lsb for name in ("AXIS", "NEGATIVE"))
+    axis_bit, negative_bit = (home_spec.field(name).lsb for name in ("AXIS", "NEGATIVE"))
+    index_lsb, index_msb = index_field.lsb, index_field.lsb + index_field.width
     busy_bit, done_bit, not_found_bit, refused_bit, phase_lsb = (
         regmap.register("HOME_STATUS").field(name).lsb for name in ("BUSY", "DONE", "NOT_FOUND", "REFUSED", "PHASE"))
 
     @always_comb
+    def ask():
+        # AXIS_INDEX names the axis; 0 leaves it to AXIS (X or Y), as a two-axis host writes HOME
+        if port.request[index_msb:index_lsb] != 0:
+            asked.next = port.request[index_msb:index_lsb]
+            valid.next = port.request[index_msb:index_lsb] < axes
+        else:
+            asked.next = concat(intbv(0)[index_field.width - 1:], port.request[axis_bit])
+            valid.next = True   # X or Y: every card has them
+
+    @always_comb
+    def index():
+        slot.next = axis[slot_bits:]
+
+    @always_comb
     def select():
-        switch.next = port.home[1] if axis else port.home[0]
+        switch.next = 0
+        if axis < axes:
+            switch.next = port.home[slot]
         seeking.next = state == state_t.SEEK_LOAD or state == state_t.SEEK
         seek_next.next = state == state_t.IDLE or state == state_t.SEEK_LOAD or (state == state_t.SEEK and not switch)
         # the load after IDLE is the seek's, after SEEK the release's; the retarget in RELEASE the back-off's
@@ -118,12 +145,10 @@ def homing(clock, reset, port):
         finished.next = state == state_t.SETTLE and not port.outputs_active
         port.cut.next = state == state_t.SEEK and switch
         port.retarget.next = released
-        port.zero.next = 0
-        if released:
-            if axis:
-                port.zero.next = 2
-            else:
-                port.zero.next = 1
+        zero = intbv(0)[axes:]
+        if released and axis < axes:
+            zero[slot] = 1
+        port.zero.next = zero
 
     @always_comb
     def phases():
@@ -138,10 +163,11 @@ def homing(clock, reset, port):
 
     @always_comb
     def show():
-        asked = intbv(0)[len(port.taken):]
-        asked[axis_bit] = axis
-        asked[negative_bit] = negative
-        port.taken.next = asked
+        taken = intbv(0)[len(port.taken):]
+        taken[axis_bit] = axis[0]
+        taken[negative_bit] = negative
+        taken[index_msb:index_lsb] = axis
+        port.taken.next = taken
         word = intbv(0)[len(port.state):]
         # a read in the clock the HOME write is taken shows it busy already
         word[busy_bit] = state != state_t.IDLE or port.start
@@ -164,12 +190,12 @@ def homing(clock, reset, port):
                 port.ended.next = 1
         elif state == state_t.IDLE:
             if port.start:
-                axis.next = port.request[axis_bit]
+                axis.next = asked
                 negative.next = port.request[negative_bit]
                 done.next = 0
                 not_found.next = 0
-                refused.next = not port.idle
-                port.ended.next = not port.idle
+                refused.next = not port.idle or not valid
+                port.ended.next = not port.idle or not valid
         else:
             if port.start:
                 refused.next = 1
@@ -186,7 +212,7 @@ def homing(clock, reset, port):
         if port.clear or gave_up or finished:
             state.next = state_t.IDLE
         elif state == state_t.IDLE:
-            if port.start and port.idle:
+            if port.start and port.idle and valid:
                 state.next = state_t.SEEK_LOAD
         elif state == state_t.SEEK_LOAD:
             state.next = state_t.SEEK
@@ -205,9 +231,9 @@ def homing(clock, reset, port):
             if not port.pulse_busy:
                 state.next = state_t.SETTLE
 
-    return select, command, sign, negate, next_load, edges, phases, show, outcome, sequence
+    return ask, index, select, command, sign, negate, next_load, edges, phases, show, outcome, sequence
 
 
-def homing_ports():
-    """Fresh ports of ``homing`` for conversion and benches."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), port=Homing())
+def homing_ports(axes=AXES.default):
+    """Fresh ports of ``homing`` for conversion and benches, of a card of ``axes`` axes."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), port=Homing(axes))

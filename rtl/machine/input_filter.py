@@ -1,6 +1,7 @@
 """The machine inputs' conditioning: synchroniser, polarity and glitch filter."""
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
+from models.parameters import AXES
 from rtl.interfaces import InputConditioning, card_reset
 
 
@@ -92,6 +93,6 @@ def _input_count(clock, reset, level, active, sample, samples, held, taken, *, i
     return count_samples, decide
 
 
-def input_filter_ports():
-    """Fresh ports of ``input_filter`` for conversion and benches."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), inputs=InputConditioning())
+def input_filter_ports(axes=AXES.default):
+    """Fresh ports of ``input_filter`` for conversion and benches: the inputs of a card of ``axes`` axes."""
+    return dict(clock=Signal(bool(0)), reset=card_reset(), inputs=InputConditioning(axes))

@@ -1,10 +1,9 @@
 """The machine guard: E-stop latch, host watchdog, limit gates and drive enable."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block
 
 from models import registers as regmap
 from models.parameters import AXES
-from rtl.interfaces import (INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X, INPUT_LIMIT_POS_Y,
-                            AxisPulses, MachineGuard, axis_suffixes, card_reset, named)
+from rtl.interfaces import INPUT_ESTOP, AxisPulses, MachineGuard, axis_suffixes, card_reset, named
 
 REASON_ESTOP, REASON_WATCHDOG, REASON_LIMIT = (regmap.STOP_REASONS.index(name)
                                                for name in ("ESTOP", "WATCHDOG", "LIMIT"))
@@ -24,8 +23,9 @@ def machine_guard(clock, reset, guard, request, granted):
     1. ESTOP: the filtered E-stop input is active.
     2. WATCHDOG: ``watchdog_left`` reaches 0.  A ``watchdog_load`` sets it
        to ``watchdog_timeout`` (0: off); it counts down by one every clock.
-    3. LIMIT: a step request towards an active limit (``limits``: which;
-       X and Y have limit inputs).
+    3. LIMIT: a step request of any axis towards its active limit
+       (``limits``: which, bit 2 axis its positive end, 2 axis + 1 its
+       negative: STOP_REASON.LIMITS).
 
     A WATCHDOG or LIMIT cause while ``ramp`` is high (RAMP_STEP not 0)
     starts a decelerated stop instead: ``stopping`` rises at the edge after
@@ -73,24 +73,25 @@ def machine_guard(clock, reset, guard, request, granted):
         stopped       _____________ .. _______/~~~~~
         drive_enable  ~~~~~~~~~~~~~ .. ~~~~~~~\\_____
     """
-    if granted.axes != request.axes:
-        raise ValueError(f"machine_guard: request has {request.axes} axes, granted {granted.axes}")
-    limit_bits = len(guard.limits)
-    hits = Signal(intbv(0)[limit_bits:])
+    if not granted.axes == request.axes == guard.axes:
+        raise ValueError(f"machine_guard: request has {request.axes} axes, granted {granted.axes}, "
+                         f"guard {guard.axes}")
     estop, expired, passes = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    grants = [named(f"grant_{suffix}", _grant(request.step(axis), request.dir(axis), passes, granted.step(axis),
-                                               granted.dir(axis)))
-              for axis, suffix in enumerate(axis_suffixes(request.axes))]
+    hit_bits = [Signal(bool(0)) for _ in range(len(guard.limits))]   # STOP_REASON.LIMITS's order
+    hits = ConcatSignal(*reversed(hit_bits))
+    grants, checks = [], []
+    for axis, suffix in enumerate(axis_suffixes(request.axes)):
+        grants.append(named(f"grant_{suffix}", _grant(request.step(axis), request.dir(axis), passes,
+                                                      granted.step(axis), granted.dir(axis))))
+        ends = {positive: (guard.active(regmap.limit_input(axis, positive)), hit_bits[regmap.limit_bit(axis, positive)])
+                for positive in (True, False)}
+        checks.append(named(f"limit_{suffix}", _limit_hit(request.step(axis), request.dir(axis), *ends[True],
+                                                          *ends[False])))
 
     @always_comb
     def causes():
         estop.next = guard.active[INPUT_ESTOP]
         expired.next = guard.watchdog_left == 1 and not guard.watchdog_load
-        hits.next = concat(
-            request.step_y and not request.dir_y and guard.active[INPUT_LIMIT_NEG_Y],
-            request.step_y and request.dir_y and guard.active[INPUT_LIMIT_POS_Y],
-            request.step_x and not request.dir_x and guard.active[INPUT_LIMIT_NEG_X],
-            request.step_x and request.dir_x and guard.active[INPUT_LIMIT_POS_X])
 
     @always_comb
     def gate():
@@ -139,7 +140,20 @@ def machine_guard(clock, reset, guard, request, granted):
         elif guard.watchdog_left != 0:
             guard.watchdog_left.next = guard.watchdog_left - 1
 
-    return grants, causes, gate, latch, watchdog
+    return grants, checks, causes, gate, latch, watchdog
+
+
+@block
+def _limit_hit(request_step, request_dir, at_pos, hit_pos, at_neg, hit_neg):
+    """One axis's step request towards its limit: ``hit_pos`` a positive step while the positive
+    end's limit input is active (``at_pos``), ``hit_neg`` a negative one at the negative end."""
+
+    @always_comb
+    def towards():
+        hit_pos.next = request_step and request_dir and at_pos
+        hit_neg.next = request_step and not request_dir and at_neg
+
+    return towards
 
 
 @block
@@ -156,5 +170,5 @@ def _grant(request_step, request_dir, passes, granted_step, granted_dir):
 
 def machine_guard_ports(axes=AXES.default):
     """Fresh ports of ``machine_guard`` for conversion and benches, of ``axes`` axes."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), guard=MachineGuard(), request=AxisPulses(axes),
+    return dict(clock=Signal(bool(0)), reset=card_reset(), guard=MachineGuard(axes), request=AxisPulses(axes),
                 granted=AxisPulses(axes))

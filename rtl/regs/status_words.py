@@ -1,5 +1,5 @@
 """The card's status registers: STATUS, INT_STATUS's events and INTA#, MARK_TAG,
-MACHINE_STATUS, STOP_REASON, POS_X and POS_Y."""
+MACHINE_STATUS, STOP_REASON, INPUT_RAW, INPUT_ACTIVE, POS_X and POS_Y."""
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from models import registers as regmap
@@ -35,7 +35,8 @@ def status_words(clock, reset, words, guard, conditioning, mark):
         int_set.DONE _______/~~~\\_________
         INT_STATUS   _________/~~~~~~~~~~~     DONE (written 1 clears it)
         irq          _________/~~~~~~~~~~~     INT_ENABLE.DONE = 1
-    MACHINE_STATUS, STOP_REASON, MARK_TAG (the tag of the last MARK, taken
+    MACHINE_STATUS (the first ``XY_INPUTS`` inputs: ESTOP, X's and Y's), STOP_REASON,
+    INPUT_RAW, INPUT_ACTIVE (every input of the card), MARK_TAG (the tag of the last MARK, taken
     with ``mark.strobe``), POS_X and POS_Y follow their sources.
     """
     busy_before, done_flag, low_before, error_before = (Signal(bool(0)) for _ in range(4))
@@ -50,7 +51,7 @@ def status_words(clock, reset, words, guard, conditioning, mark):
     machine_stopped, machine_drive = _bit("MACHINE_STATUS", "STOPPED"), _bit("MACHINE_STATUS", "DRIVE_ENABLE")
     held_bit, stopping_bit = _bit("MACHINE_STATUS", "HELD"), _bit("MACHINE_STATUS", "STOPPING")
     reason_lsb, limits_lsb = _bit("STOP_REASON", "REASON"), _bit("STOP_REASON", "LIMITS")
-    inputs, reason_bits, limit_bits = len(conditioning.raw), len(guard.reason), len(guard.limits)
+    inputs, reason_bits, limit_bits = regmap.XY_INPUTS, len(guard.reason), len(guard.limits)
     status_bits, machine_bits, reason_word = len(words.status), len(words.machine_status), len(words.stop_reason)
     position_x, position_y = words.position_x, words.position_y
 
@@ -99,8 +100,8 @@ def status_words(clock, reset, words, guard, conditioning, mark):
     @always_comb
     def assemble_machine():
         word = intbv(0)[machine_bits:]
-        word[raw_lsb + inputs:raw_lsb] = conditioning.raw
-        word[active_lsb + inputs:active_lsb] = conditioning.active
+        word[raw_lsb + inputs:raw_lsb] = conditioning.raw[inputs:]
+        word[active_lsb + inputs:active_lsb] = conditioning.active[inputs:]
         word[machine_stopped] = guard.stopped
         word[machine_drive] = guard.drive_enable
         word[held_bit] = guard.held
@@ -110,6 +111,8 @@ def status_words(clock, reset, words, guard, conditioning, mark):
         why[reason_lsb + reason_bits:reason_lsb] = guard.reason
         why[limits_lsb + limit_bits:limits_lsb] = guard.limits
         words.stop_reason.next = why
+        words.input_raw.next = conditioning.raw
+        words.input_active.next = conditioning.active
 
     @always_comb
     def show_positions():

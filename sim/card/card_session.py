@@ -193,6 +193,16 @@ class CardSession:
             return bool(self._runner.card.model[f"pins_{name}"])
         return bool(getattr(self.target.pins, name))
 
+    def set_input(self, name, level):
+        """Set the machine input pin ``name`` (``estop``, ``limit_pos_z``, ...: ``MotorPins``) to
+        ``level``, taken by the next rising edge; a session with a simulated machine drives them itself."""
+        if self.machine is not None:
+            raise RuntimeError("the simulated machine drives the input pins")
+        if self.kind == "verilator":
+            self._runner.card.model[f"pins_{name}"] = int(bool(level))
+        else:
+            self.call(_drive_pin(getattr(self.target.pins, name), level))
+
     def wait(self, clocks, inta=False, steps=0):
         """Up to ``clocks`` clocks, fewer when INTA# is sampled low (``inta``)
         or ``steps`` more STEP rises came; (clocks waited, ``Stop``)."""
@@ -203,6 +213,12 @@ class CardSession:
         if not self.closed:
             self.closed = True
             self._runner.close()
+
+
+def _drive_pin(pin, level):
+    """A scenario that sets ``pin`` at once (no clock passes)."""
+    pin.next = bool(level)
+    yield from ()
 
 
 class _VerilatorRunner:

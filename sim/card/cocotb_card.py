@@ -19,7 +19,8 @@ from models import instructions as isa
 from models import registers as regmap
 from models.parameters import PARAMETERS
 from rtl.convert import GEN_DIR
-from rtl.interfaces import MACHINE_INPUTS
+from models.parameters import AXES
+from rtl.interfaces import machine_inputs
 from sim.pci.cocotb_bus import CocotbPciBus, split_pins
 from sim.pci.master import PciMaster
 
@@ -44,7 +45,7 @@ async def count_steps(dut, counts):
 async def card_enumerate_registers_fifo_move(dut):
     Clock(dut.clock, CLOCK_NS, unit="ns").start()
     dut.reset.value = 0
-    for name in MACHINE_INPUTS:   # switches at rest: nothing stops the card
+    for name in machine_inputs(AXES.default):   # gen/card.v's switches at rest: nothing stops the card
         getattr(dut, f"pins_{name}").value = 0
     bus = CocotbPciBus(dut, split_pins([GEN_DIR / "card.v"], "card"), dut.clock, dut.reset,
                        idsel="pci_idsel_in", host=PciMaster(max_retries=1 << 20))

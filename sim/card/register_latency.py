@@ -15,7 +15,8 @@ window over memory (BAR1) and the same registers over memory (BAR2).  ``bench/pc
 from models import instructions as isa
 from models import registers as regmap
 from rtl.convert import GEN_DIR
-from rtl.interfaces import MACHINE_INPUTS
+from models.parameters import AXES
+from rtl.interfaces import machine_inputs
 from sim.card.card_bench import PinLog
 from sim.card.card_e2e import card_bars
 from sim.card.fifo_scoreboard import DEFAULT_FIFO, card_target
@@ -31,7 +32,7 @@ def card_verilog():
     """``gen/card.v`` as a ``VerilogTarget``."""
     card = GEN_DIR / "card.v"
     return VerilogTarget([card], "card", split_pins([card], "card"), clock="clock", reset="reset",
-                         idsel="pci_idsel_in", ties={f"pins_{name}": "1'b0" for name in MACHINE_INPUTS})
+                         idsel="pci_idsel_in", ties={f"pins_{name}": "1'b0" for name in machine_inputs(AXES.default)})
 
 
 def card(kind):

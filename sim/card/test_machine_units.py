@@ -18,7 +18,8 @@ from sim.backends.icarus import convert_and_cosimulate
 from sim.backends.waves import run_traced
 
 HALF_PERIOD = 5
-INPUTS = len(regmap.INPUT_NAMES)
+# (axes, seed): the two-axis card and a three-axis one, whose Z inputs and limits the units take too
+BUILDS = [(2, 1), (3, 2)]
 
 
 @block
@@ -39,20 +40,21 @@ def _run(name, factory, module, ports, cosim, step, cycles, after=None):
     run_traced(_bench(factory, module, ports, cosim, step, cycles, after), f"{name}_{'icarus' if cosim else 'myhdl'}")
 
 
-def _bouncing(rng, level, bounce):
+def _bouncing(rng, level, bounce, inputs):
     """A pin level that flips now and then, with bursts of bounce."""
     if rng.random() < bounce:
-        return level ^ (1 << rng.randrange(INPUTS))
+        return level ^ (1 << rng.randrange(inputs))
     return level
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
-@pytest.mark.parametrize("seed", [1, 2])
-def test_input_filter_against_model(seed, cosim):
+@pytest.mark.parametrize("axes,seed", BUILDS)
+def test_input_filter_against_model(axes, seed, cosim):
     rng = random.Random(seed)
-    ports = input_filter_ports()
+    ports = input_filter_ports(axes)
     inputs = ports["inputs"]
-    model = InputFilterModel()
+    count = len(regmap.input_names(axes))
+    model = InputFilterModel(count)
     changes = []
     state = dict(pins=0, polarity=0, samples=int(inputs.samples), tick=int(inputs.tick))
 
@@ -66,15 +68,15 @@ def test_input_filter_against_model(seed, cosim):
             changes.append(index)
         if index % 500 == 0:
             state.update(samples=rng.choice([1, 2, 5, 15]), tick=rng.choice([1, 1, 2, 7]),
-                         polarity=rng.randrange(1 << INPUTS))
+                         polarity=rng.randrange(1 << count))
         if rng.random() < 0.02:
-            state["pins"] ^= 1 << rng.randrange(INPUTS)   # a real change, bouncing for a while
-        pins = _bouncing(rng, state["pins"], 0.15)
+            state["pins"] ^= 1 << rng.randrange(count)   # a real change, bouncing for a while
+        pins = _bouncing(rng, state["pins"], 0.15, count)
         inputs.pins.next, inputs.polarity.next = pins, state["polarity"]
         inputs.samples.next, inputs.tick.next = state["samples"], state["tick"]
         model.clock(pins, state["polarity"], state["samples"], state["tick"])
 
-    _run(f"input_filter_{seed}", input_filter, "input_filter", ports, cosim, step, 3000)
+    _run(f"input_filter_{axes}_{seed}", input_filter, "input_filter", ports, cosim, step, 3000)
     assert len(changes) > 30
 
 
@@ -107,12 +109,14 @@ def test_input_filter_reaction_and_glitch(samples):
     assert all(seen[first:])
 
 
-def _guard_inputs(rng, model, index, state):
+def _guard_inputs(rng, model, index, state, axes):
     if index % 200 == 0:
-        state["active"] = rng.choice([0, 0, 1 << INPUT["ESTOP"], rng.randrange(1 << INPUTS) & ~1,
-                                      1 << rng.randrange(1, 5)])
-    steps = (rng.random() < 0.3, rng.random() < 0.3)
-    dirs = (rng.random() < 0.5, rng.random() < 0.5)
+        limits = [regmap.limit_input(axis, positive) for axis in range(axes) for positive in (True, False)]
+        state["active"] = rng.choice([0, 0, 1 << INPUT["ESTOP"],
+                                      rng.randrange(1 << len(regmap.input_names(axes))) & ~1,
+                                      1 << rng.choice(limits)])
+    steps = tuple(rng.random() < 0.3 for _ in range(axes))
+    dirs = tuple(rng.random() < 0.5 for _ in range(axes))
     load = rng.random() < 0.01
     if index % 300 == 0:
         state["ramp"] = rng.random() < 0.5
@@ -124,13 +128,15 @@ def _guard_inputs(rng, model, index, state):
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
-@pytest.mark.parametrize("seed", [1, 2])
-def test_machine_guard_against_model(seed, cosim):
+@pytest.mark.parametrize("axes,seed", BUILDS)
+def test_machine_guard_against_model(axes, seed, cosim):
+    """Every output every clock; on three axes a Z step towards Z's active limit stops with
+    STOP_REASON.LIMITS's Z bit (the model's, from the docs' bit order)."""
     rng = random.Random(seed)
-    ports = machine_guard_ports()
+    ports = machine_guard_ports(axes)
     guard, request, granted = ports["guard"], ports["request"], ports["granted"]
     model = MachineGuardModel()
-    reasons, decelerated = set(), set()
+    reasons, decelerated, limits_seen = set(), set(), set()
     state = {"active": 0}
 
     def step(index):
@@ -141,11 +147,12 @@ def test_machine_guard_against_model(seed, cosim):
         for name in ("reason", "limits", "watchdog_left"):
             assert int(getattr(guard, name)) == getattr(model, name), f"{name} at clock {index}"
         reasons.add(model.reason)
-        given = _guard_inputs(rng, model, index, state)
+        limits_seen.add(model.limits)
+        given = _guard_inputs(rng, model, index, state, axes)
         state["timeout"] = given["watchdog_timeout"]
         guard.active.next = given["active"]
-        request.step_x.next, request.step_y.next = given["steps"]
-        request.dir_x.next, request.dir_y.next = given["dirs"]
+        for axis in range(axes):
+            request.step(axis).next, request.dir(axis).next = given["steps"][axis], given["dirs"][axis]
         for name in ("drive_request", "clear_stop", "watchdog_load", "watchdog_timeout", "ramp", "held", "pulsing"):
             getattr(guard, name).next = given[name]
         pending[:] = [model.granted(given["active"], given["steps"], given["dirs"], given["ramp"]),
@@ -157,10 +164,12 @@ def test_machine_guard_against_model(seed, cosim):
 
     def check(index):
         wanted, halt = pending
-        assert (bool(granted.step_x), bool(granted.step_y)) == wanted, f"granted at clock {index}"
+        assert tuple(bool(granted.step(axis)) for axis in range(axes)) == wanted, f"granted at clock {index}"
         assert bool(guard.halt) == halt, f"halt at clock {index}"
 
     pending = []
-    _run(f"machine_guard_{seed}", machine_guard, "machine_guard", ports, cosim, step, 6000, check)
+    _run(f"machine_guard_{axes}_{seed}", machine_guard, "machine_guard", ports, cosim, step, 6000, check)
     assert reasons >= {REASON["NONE"], REASON["ESTOP"], REASON["WATCHDOG"], REASON["LIMIT"]}
     assert decelerated >= {REASON["WATCHDOG"], REASON["LIMIT"]}, "decelerated stops of both kinds"
+    axis_limits = {1 << regmap.limit_bit(axis, positive) for axis in range(axes) for positive in (True, False)}
+    assert axis_limits <= limits_seen, "a stop at each limit of every axis"

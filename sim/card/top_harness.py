@@ -43,9 +43,9 @@ from pathlib import Path
 
 from myhdl import Signal, always, block, intbv, now
 
-from models.axes import AXIS_NAMES
+from models.axes import AXIS_NAMES, MAX_AXES
 from rtl.convert import GEN_DIR, build_dir
-from rtl.interfaces import MACHINE_INPUTS
+from rtl.interfaces import machine_inputs
 from sim.backends.conversions import converted
 from sim.backends.icarus import CosimError, cosimulate
 from sim.pci.bus import LINE_WIDTHS, OPEN_DRAIN, PULLED_UP
@@ -55,10 +55,10 @@ TOP = "top"
 GEN_ENVIRONMENT = "DDA_CARD_GEN"
 ICE40_DEFINES = ("NO_ICE40_DEFAULT_ASSIGNMENTS",)  # Icarus has no default values on input ports
 PIN_PREFIX = "pci_pins_"
-# STEP/DIR of every axis a build can have (a top has those of its axes) and DRIVE_ENABLE
+# STEP/DIR of every axis a build can have, DRIVE_ENABLE and every machine input (a top has those of its axes)
 MOTOR_OUTPUTS = tuple(f"motor_{kind}_{name.lower()}" for name in AXIS_NAMES for kind in ("step", "dir")) + (
     "motor_drive_enable",)
-MOTOR_INPUTS = tuple(f"motor_{name}" for name in MACHINE_INPUTS)
+MOTOR_INPUTS = tuple(f"motor_{name}" for name in machine_inputs(MAX_AXES))
 DIRECT_PORTS = ("clock", "reset", *MOTOR_OUTPUTS, *MOTOR_INPUTS)
 
 _PORT = re.compile(r"^\s*(input|output|inout)\s+(?:wire\s+|reg\s+)?(?:\[(\d+):0\]\s*)?(\w+)\s*;",
@@ -124,6 +124,7 @@ class TopHarness:
         self.ports = {name: (direction, int(msb or 0) + 1) for direction, msb, name in _PORT.findall(body)}
         self.cells = _pad_cells(body)
         self.motor_outputs = [name for name in MOTOR_OUTPUTS if name in self.ports]
+        self.motor_inputs = [name for name in MOTOR_INPUTS if name in self.ports]
         unknown = [n for n in self.ports if not n.startswith(PIN_PREFIX) and n not in DIRECT_PORTS]
         if unknown:
             raise CosimError(f"{self.top_verilog}: ports {unknown} are neither PCI pins nor {DIRECT_PORTS}")
@@ -197,9 +198,9 @@ class TopHarness:
         ports.append("card_drive_unknown")
         declarations.append(f"output {_range(len(unknown))}card_drive_unknown;")
         body.append("assign card_drive_unknown = {\n    " + ",\n    ".join(reversed(unknown)) + "};")
-        motor = [*self.motor_outputs, *MOTOR_INPUTS]
+        motor = [*self.motor_outputs, *self.motor_inputs]
         ports += motor
-        declarations += [f"output {n};" for n in self.motor_outputs] + [f"input {n};" for n in MOTOR_INPUTS]
+        declarations += [f"output {n};" for n in self.motor_outputs] + [f"input {n};" for n in self.motor_inputs]
         connections = [".clock(clock)", ".reset(reset)"] + [f".{n}({n})" for n in motor]
         connections += [f".{PIN_PREFIX}{line}(bus_{line})" for line in LINE_WIDTHS]
         connections.append(f".{PIN_PREFIX}idsel(bus_idsel)")

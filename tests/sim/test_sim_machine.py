@@ -92,4 +92,4 @@ def test_compiled_machine_matches_its_golden_model():
     words = [word & 0x7F for _, word in changes]
     bit = 1 << INPUTS.index("HOME_X")
     assert sum((a ^ b) & bit != 0 for a, b in zip(words, words[1:])) >= 6, "HOME_X bounced at each change"
-    assert regmap.INPUT_NAMES == INPUTS
+    assert regmap.INPUT_NAMES[:len(INPUTS)] == INPUTS   # the X/Y machine's inputs are the card's first
