@@ -130,7 +130,8 @@ def run_chain(axes, seed, count, cosim):
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
-@pytest.mark.parametrize("axes, seed", [(2, 1), (3, 2), (4, 3)])
+@pytest.mark.parametrize("axes, seed", [(2, 1), (3, 2), pytest.param(4, 3, marks=pytest.mark.slow(
+    reason="a fourth axis: the same routing and line unit as three, another 10 s a back end"))])
 def test_chained_lines_and_arcs_step_as_the_golden_model(axes, seed, cosim):
     seen, advances, dones, moves, all_ones = run_chain(axes, seed, 8, cosim)
     golden, iterations = expected(moves, axes)
