@@ -744,8 +744,6 @@ reg [31:0] card_core0_regs_fifo1_sequencer1_operand_0;
 reg [23:0] card_core0_regs_fifo1_sequencer1_operand_1;
 reg [23:0] card_core0_regs_fifo1_sequencer1_operand_2;
 reg [23:0] card_core0_regs_fifo1_sequencer1_operand_3;
-reg [0:0] card_core0_regs_fifo1_sequencer1_plane_u;
-reg [0:0] card_core0_regs_fifo1_sequencer1_plane_v;
 reg card_core0_regs_fifo1_sequencer1_set_known;
 reg [3:0] card_core0_regs_fifo1_sequencer1_slot_taken;
 reg [3:0] card_core0_regs_fifo1_sequencer1_slots_left;
@@ -757,8 +755,6 @@ reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
 reg card_core0_regs_fifo1_sequencer1_arriving_moves;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_slots;
-reg [0:0] card_core0_regs_fifo1_sequencer1_arriving_u;
-reg [0:0] card_core0_regs_fifo1_sequencer1_arriving_v;
 reg card_core0_regs_fifo1_sequencer1_arriving_known;
 reg card_core0_regs_fifo1_sequencer1_arriving_reserved;
 reg card_core0_regs_fifo1_sequencer1_arriving_out_of_range;
@@ -780,8 +776,6 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
-reg [0:0] card_core0_regs_fifo1_sequencer1_axes_cmd_u;
-reg [0:0] card_core0_regs_fifo1_sequencer1_axes_cmd_v;
 reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_high;
 reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_low;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
@@ -950,8 +944,6 @@ reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
 reg card_core0_regs_fifo1_status_words1_low_before;
 wire [1:0] card_core0_regs_fifo1_status_words1_words_quadrant;
-reg [0:0] card_core0_dda_axes0_u_run;
-reg [0:0] card_core0_dda_axes0_v_run;
 reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_carry;
 reg [48:0] card_core0_dda_axes0_dda_arc1_dda_setup1_gap;
@@ -1112,10 +1104,6 @@ reg card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near;
 wire card_core0_dda_axes0_dda_arc1_dda_run1_step_last;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_pending;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_finished;
-reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x;
-reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y;
-reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x;
-reg card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_blend;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference;
@@ -1124,9 +1112,6 @@ reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_in;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_bias_out;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_step;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term;
-reg [1:0] card_core0_dda_axes0__plane_queue0_moves;
-reg [0:0] card_core0_dda_axes0__plane_queue0_u_next;
-reg [0:0] card_core0_dda_axes0__plane_queue0_v_next;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
@@ -4810,16 +4795,7 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
         card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) && (card_core0_regs_fifo1_fifo_dout[26-1:20] != 3));
     end
     else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2)) begin
-        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[16-1:13] >= 2) || (card_core0_regs_fifo1_fifo_dout[20-1:17] >= 2) || ((card_core0_regs_fifo1_fifo_dout[16-1:13] == card_core0_regs_fifo1_fifo_dout[20-1:17]) && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)) || (card_core0_regs_fifo1_fifo_dout[26-1:20] != 0));
-    end
-end
-
-
-always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_plane
-    card_core0_regs_fifo1_sequencer1_arriving_u = card_core0_regs_fifo1_fifo_dout[13+:1];
-    card_core0_regs_fifo1_sequencer1_arriving_v = card_core0_regs_fifo1_fifo_dout[17+:1];
-    if (((card_core0_regs_fifo1_fifo_dout[16-1:13] == 0) && (card_core0_regs_fifo1_fifo_dout[20-1:17] == 0))) begin
-        card_core0_regs_fifo1_sequencer1_arriving_v = 1;
+        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[16-1:13] >= 2) || (card_core0_regs_fifo1_fifo_dout[20-1:17] >= 2) || ((card_core0_regs_fifo1_fifo_dout[16-1:13] == card_core0_regs_fifo1_fifo_dout[20-1:17]) && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)) || (card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) || (1'b1 && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)));
     end
 end
 
@@ -4837,56 +4813,36 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register4_hold
-    if (reset == 0) begin
+always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register4_hold
+    if (card_core0_regs_fifo1_sequencer1_slot_taken[0]) begin
+        card_core0_regs_fifo1_sequencer1_operand_0 <= card_core0_regs_fifo1_fifo_dout[32-1:0];
+    end
+    else if (card_core0_regs_fifo1_sequencer1_line_in) begin
         card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
     end
-    else begin
-        if (card_core0_regs_fifo1_sequencer1_slot_taken[0]) begin
-            card_core0_regs_fifo1_sequencer1_operand_0 <= card_core0_regs_fifo1_fifo_dout[32-1:0];
-        end
-        else if (card_core0_regs_fifo1_sequencer1_line_in) begin
-            card_core0_regs_fifo1_sequencer1_operand_0 <= 0;
-        end
-    end
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register5_hold
-    if (reset == 0) begin
+always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register5_hold
+    if (card_core0_regs_fifo1_sequencer1_slot_taken[1]) begin
+        card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
+    end
+    else if (card_core0_regs_fifo1_sequencer1_line_in) begin
         card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
     end
-    else begin
-        if (card_core0_regs_fifo1_sequencer1_slot_taken[1]) begin
-            card_core0_regs_fifo1_sequencer1_operand_1 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
-        end
-        else if (card_core0_regs_fifo1_sequencer1_line_in) begin
-            card_core0_regs_fifo1_sequencer1_operand_1 <= 0;
-        end
+end
+
+
+always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register6_hold
+    if (card_core0_regs_fifo1_sequencer1_slot_taken[2]) begin
+        card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register6_hold
-    if (reset == 0) begin
-        card_core0_regs_fifo1_sequencer1_operand_2 <= 0;
-    end
-    else begin
-        if (card_core0_regs_fifo1_sequencer1_slot_taken[2]) begin
-            card_core0_regs_fifo1_sequencer1_operand_2 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_operand_register7_hold
-    if (reset == 0) begin
-        card_core0_regs_fifo1_sequencer1_operand_3 <= 0;
-    end
-    else begin
-        if (card_core0_regs_fifo1_sequencer1_slot_taken[3]) begin
-            card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
-        end
+always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register7_hold
+    if (card_core0_regs_fifo1_sequencer1_slot_taken[3]) begin
+        card_core0_regs_fifo1_sequencer1_operand_3 <= card_core0_regs_fifo1_fifo_dout[24-1:0];
     end
 end
 
@@ -5008,16 +4964,14 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
     if (reset == 0) begin
         card_core0_regs_fifo1_sequencer1_bad_axes <= 0;
         card_core0_regs_fifo1_sequencer1_bad_variant <= 0;
-        card_core0_regs_fifo1_sequencer1_plane_u <= 0;
         card_core0_regs_fifo1_sequencer1_next_motion <= 0;
         card_core0_regs_fifo1_sequencer1_slots_left <= 0;
         card_core0_regs_fifo1_sequencer1_bad_set_index <= 0;
         card_core0_regs_fifo1_sequencer1_bad_opcode <= 0;
         card_core0_regs_fifo1_sequencer1_word_due <= 0;
         card_core0_regs_fifo1_sequencer1_next_valid <= 0;
-        card_core0_regs_fifo1_sequencer1_plane_v <= 1;
-        card_core0_regs_fifo1_sequencer1_header <= 0;
         card_core0_regs_fifo1_sequencer1_bad_operand <= 0;
+        card_core0_regs_fifo1_sequencer1_header <= 0;
         card_core0_regs_fifo1_sequencer1_bad_header_bits <= 0;
         card_core0_regs_fifo1_sequencer1_opcode <= 0;
         card_core0_regs_fifo1_sequencer1_next_count <= 0;
@@ -5041,8 +4995,6 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
                     card_core0_regs_fifo1_sequencer1_next_motion <= card_core0_regs_fifo1_sequencer1_arriving_moves;
                     card_core0_regs_fifo1_sequencer1_next_count <= card_core0_regs_fifo1_sequencer1_arriving_operands;
                     card_core0_regs_fifo1_sequencer1_slots_left <= card_core0_regs_fifo1_sequencer1_arriving_slots;
-                    card_core0_regs_fifo1_sequencer1_plane_u <= card_core0_regs_fifo1_sequencer1_arriving_u;
-                    card_core0_regs_fifo1_sequencer1_plane_v <= card_core0_regs_fifo1_sequencer1_arriving_v;
                     card_core0_regs_fifo1_sequencer1_bad_opcode <= (!card_core0_regs_fifo1_sequencer1_arriving_known);
                     card_core0_regs_fifo1_sequencer1_bad_header_bits <= card_core0_regs_fifo1_sequencer1_arriving_reserved;
                     card_core0_regs_fifo1_sequencer1_bad_axes <= card_core0_regs_fifo1_sequencer1_arriving_out_of_range;
@@ -5215,7 +5167,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_d
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_sequencer1_plane_u, card_core0_regs_fifo1_sequencer1_operand_3, card_core0_regs_fifo1_sequencer1_operand_1, card_core0_regs_fifo1_sequencer1_header, card_core0_regs_fifo1_sequencer1_opcode, card_core0_regs_fifo1_sequencer1_plane_v, card_core0_regs_fifo1_sequencer1_operand_2) begin: card_core0_regs_fifo1_sequencer1_present
+always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_sequencer1_operand_3, card_core0_regs_fifo1_sequencer1_operand_1, card_core0_regs_fifo1_sequencer1_header, card_core0_regs_fifo1_sequencer1_opcode, card_core0_regs_fifo1_sequencer1_operand_2) begin: card_core0_regs_fifo1_sequencer1_present
     card_core0_regs_fifo1_sequencer1_dda_line = (card_core0_regs_fifo1_sequencer1_opcode == 1);
     card_core0_regs_fifo1_sequencer1_dda_ccw = card_core0_regs_fifo1_sequencer1_header[0];
     card_core0_regs_fifo1_sequencer1_dda_blend = card_core0_regs_fifo1_sequencer1_header[16];
@@ -5239,8 +5191,6 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
     card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
     card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
     card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
-    card_core0_regs_fifo1_sequencer1_axes_cmd_u = card_core0_regs_fifo1_sequencer1_plane_u;
-    card_core0_regs_fifo1_sequencer1_axes_cmd_v = card_core0_regs_fifo1_sequencer1_plane_v;
 end
 
 
@@ -7911,31 +7861,31 @@ always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes
         card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece <= 0;
         card_core0_dda_axes0_dda_arc1_dda_run1_step_pending <= 0;
         card_core0_dda_axes0_dda_arc1_dda_run1_tail_taken <= 0;
-        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x <= 0;
+        card_core0_regs_fifo1_steps_step_x <= 0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 0;
-        card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x <= 0;
-        card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y <= 0;
-        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y <= 0;
+        card_core0_regs_fifo1_steps_dir_x <= 0;
+        card_core0_regs_fifo1_steps_dir_y <= 0;
+        card_core0_regs_fifo1_steps_step_y <= 0;
         card_core0_dda_axes0_dda_arc1_dda_run1_step_step_y <= 0;
         card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x <= 0;
         card_core0_dda_axes0_dda_arc1_dda_run1_step_finished <= 0;
     end
     else begin
-        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x <= 1'b0;
-        card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y <= 1'b0;
+        card_core0_regs_fifo1_steps_step_x <= 1'b0;
+        card_core0_regs_fifo1_steps_step_y <= 1'b0;
         card_core0_regs_fifo1_sequencer1_dda_done <= 1'b0;
         card_core0_dda_axes0_dda_arc1_dda_run1_step_pending <= 1'b0;
         if (card_core0_dda_axes0_dda_arc1_dda_run1_taking) begin
             card_core0_dda_axes0_dda_arc1_dda_run1_step_pending <= 1'b1;
-            card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x <= card_core0_dda_axes0_dda_arc1_dda_run1_go_x;
-            card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y <= card_core0_dda_axes0_dda_arc1_dda_run1_go_y;
+            card_core0_regs_fifo1_steps_step_x <= card_core0_dda_axes0_dda_arc1_dda_run1_go_x;
+            card_core0_regs_fifo1_steps_step_y <= card_core0_dda_axes0_dda_arc1_dda_run1_go_y;
             if (card_core0_dda_axes0_dda_arc1_dda_run1_step_line) begin
-                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x <= card_core0_dda_axes0_dda_arc1_dda_run1_right;
-                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y <= card_core0_dda_axes0_dda_arc1_dda_run1_up;
+                card_core0_regs_fifo1_steps_dir_x <= card_core0_dda_axes0_dda_arc1_dda_run1_right;
+                card_core0_regs_fifo1_steps_dir_y <= card_core0_dda_axes0_dda_arc1_dda_run1_up;
             end
             else begin
-                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x <= ((card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
-                card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y <= ((!card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_regs_fifo1_steps_dir_x <= ((card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[0] == card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[1]) != card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
+                card_core0_regs_fifo1_steps_dir_y <= ((!card_core0_dda_axes0_dda_arc1_dda_run1_quadrant[1]) == card_core0_dda_axes0_dda_arc1_dda_run1_step_x_inward);
             end
             card_core0_regs_fifo1_sequencer1_dda_done <= card_core0_dda_axes0_dda_arc1_dda_run1_finished;
             card_core0_dda_axes0_dda_arc1_dda_run1_step_step_x <= card_core0_dda_axes0_dda_arc1_dda_run1_go_x;
@@ -8081,62 +8031,5 @@ end
 
 assign card_core0_regs_fifo1_status_words1_words_quadrant = card_core0_dda_axes0_dda_arc1_dda_run1_quadrant;
 assign card_core0_regs_fifo1_dda_busy = ((!card_core0_regs_fifo1_sequencer1_dda_ready) || (card_core0_dda_axes0_dda_arc1_dda_run1_active && (!(card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && card_core0_dda_axes0_dda_arc1_dda_run1_step_finished))));
-
-
-always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0__plane_queue0_follow
-    reg [2-1:0] held;
-    if (card_core0_dda_reset == 0) begin
-        card_core0_dda_axes0__plane_queue0_u_next <= 0;
-        card_core0_dda_axes0_v_run <= 1;
-        card_core0_dda_axes0__plane_queue0_v_next <= 1;
-        card_core0_dda_axes0__plane_queue0_moves <= 0;
-        card_core0_dda_axes0_u_run <= 0;
-    end
-    else begin
-        held = 0;
-        if ((!card_core0_regs_fifo1_sequencer1_dda_error)) begin
-            held = card_core0_dda_axes0__plane_queue0_moves;
-        end
-        if ((card_core0_regs_fifo1_sequencer1_dda_done && (held != 0))) begin
-            held = (held - 1);
-        end
-        if (card_core0_regs_fifo1_sequencer1_dda_start) begin
-            card_core0_dda_axes0__plane_queue0_moves <= (held + 1);
-            if ((held == 0)) begin
-                card_core0_dda_axes0_u_run <= card_core0_regs_fifo1_sequencer1_axes_cmd_u;
-                card_core0_dda_axes0_v_run <= card_core0_regs_fifo1_sequencer1_axes_cmd_v;
-            end
-            else begin
-                card_core0_dda_axes0__plane_queue0_u_next <= card_core0_regs_fifo1_sequencer1_axes_cmd_u;
-                card_core0_dda_axes0__plane_queue0_v_next <= card_core0_regs_fifo1_sequencer1_axes_cmd_v;
-            end
-        end
-        else begin
-            card_core0_dda_axes0__plane_queue0_moves <= held;
-            if ((card_core0_regs_fifo1_sequencer1_dda_done && (card_core0_dda_axes0__plane_queue0_moves == 2))) begin
-                card_core0_dda_axes0_u_run <= card_core0_dda_axes0__plane_queue0_u_next;
-                card_core0_dda_axes0_v_run <= card_core0_dda_axes0__plane_queue0_v_next;
-            end
-        end
-    end
-end
-
-
-always @(card_core0_dda_axes0_v_run, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x, card_core0_dda_axes0_u_run) begin: card_core0_dda_axes0_route_0_route
-    card_core0_regs_fifo1_steps_step_x = ((card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x && (card_core0_dda_axes0_u_run == 0)) || (card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y && (card_core0_dda_axes0_v_run == 0)));
-    card_core0_regs_fifo1_steps_dir_x = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y;
-    if ((card_core0_dda_axes0_u_run == 0)) begin
-        card_core0_regs_fifo1_steps_dir_x = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x;
-    end
-end
-
-
-always @(card_core0_dda_axes0_v_run, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y, card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x, card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x, card_core0_dda_axes0_u_run) begin: card_core0_dda_axes0_route_1_route
-    card_core0_regs_fifo1_steps_step_y = ((card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_x && (card_core0_dda_axes0_u_run == 1)) || (card_core0_dda_axes0_dda_arc1_dda_run1_steps_step_y && (card_core0_dda_axes0_v_run == 1)));
-    card_core0_regs_fifo1_steps_dir_y = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_y;
-    if ((card_core0_dda_axes0_u_run == 1)) begin
-        card_core0_regs_fifo1_steps_dir_y = card_core0_dda_axes0_dda_arc1_dda_run1_steps_dir_x;
-    end
-end
 
 endmodule

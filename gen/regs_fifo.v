@@ -37,8 +37,6 @@ module regs_fifo (
     dda_quadrant,
     dda_ready,
     dda_stop_left,
-    axes_cmd_u,
-    axes_cmd_v,
     steps_step_x,
     steps_step_y,
     steps_dir_x,
@@ -155,10 +153,6 @@ input dda_error;
 input [1:0] dda_quadrant;
 input dda_ready;
 input [26:0] dda_stop_left;
-output [0:0] axes_cmd_u;
-reg [0:0] axes_cmd_u;
-output [0:0] axes_cmd_v;
-reg [0:0] axes_cmd_v;
 input steps_step_x;
 input steps_step_y;
 input steps_dir_x;
@@ -657,8 +651,6 @@ reg [31:0] sequencer0_operand_0;
 reg [23:0] sequencer0_operand_1;
 reg [23:0] sequencer0_operand_2;
 reg [23:0] sequencer0_operand_3;
-reg [0:0] sequencer0_plane_u;
-reg [0:0] sequencer0_plane_v;
 reg sequencer0_set_known;
 reg [3:0] sequencer0_slot_taken;
 reg [3:0] sequencer0_slots_left;
@@ -670,8 +662,6 @@ reg sequencer0_arriving_has_operands;
 reg sequencer0_arriving_moves;
 reg [3:0] sequencer0_arriving_operands;
 reg [3:0] sequencer0_arriving_slots;
-reg [0:0] sequencer0_arriving_u;
-reg [0:0] sequencer0_arriving_v;
 reg sequencer0_arriving_known;
 reg sequencer0_arriving_reserved;
 reg sequencer0_arriving_out_of_range;
@@ -3307,16 +3297,7 @@ always @(fifo_dout) begin: sequencer0_command_header0_check_axes
         sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] != 0) && (fifo_dout[26-1:20] != 3));
     end
     else if ((fifo_dout[32-1:28] == 2)) begin
-        sequencer0_arriving_out_of_range = ((fifo_dout[16-1:13] >= 2) || (fifo_dout[20-1:17] >= 2) || ((fifo_dout[16-1:13] == fifo_dout[20-1:17]) && (fifo_dout[16-1:13] != 0)) || (fifo_dout[26-1:20] != 0));
-    end
-end
-
-
-always @(fifo_dout) begin: sequencer0_command_header0_plane
-    sequencer0_arriving_u = fifo_dout[13+:1];
-    sequencer0_arriving_v = fifo_dout[17+:1];
-    if (((fifo_dout[16-1:13] == 0) && (fifo_dout[20-1:17] == 0))) begin
-        sequencer0_arriving_v = 1;
+        sequencer0_arriving_out_of_range = ((fifo_dout[16-1:13] >= 2) || (fifo_dout[20-1:17] >= 2) || ((fifo_dout[16-1:13] == fifo_dout[20-1:17]) && (fifo_dout[16-1:13] != 0)) || (fifo_dout[26-1:20] != 0) || (1'b1 && (fifo_dout[16-1:13] != 0)));
     end
 end
 
@@ -3334,56 +3315,36 @@ always @(fifo_dout) begin: sequencer0_command_header0_slots
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0_operand_register0_hold
-    if (reset == 0) begin
+always @(posedge clock) begin: sequencer0_operand_register0_hold
+    if (sequencer0_slot_taken[0]) begin
+        sequencer0_operand_0 <= fifo_dout[32-1:0];
+    end
+    else if (sequencer0_line_in) begin
         sequencer0_operand_0 <= 0;
     end
-    else begin
-        if (sequencer0_slot_taken[0]) begin
-            sequencer0_operand_0 <= fifo_dout[32-1:0];
-        end
-        else if (sequencer0_line_in) begin
-            sequencer0_operand_0 <= 0;
-        end
-    end
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0_operand_register1_hold
-    if (reset == 0) begin
+always @(posedge clock) begin: sequencer0_operand_register1_hold
+    if (sequencer0_slot_taken[1]) begin
+        sequencer0_operand_1 <= fifo_dout[24-1:0];
+    end
+    else if (sequencer0_line_in) begin
         sequencer0_operand_1 <= 0;
     end
-    else begin
-        if (sequencer0_slot_taken[1]) begin
-            sequencer0_operand_1 <= fifo_dout[24-1:0];
-        end
-        else if (sequencer0_line_in) begin
-            sequencer0_operand_1 <= 0;
-        end
+end
+
+
+always @(posedge clock) begin: sequencer0_operand_register2_hold
+    if (sequencer0_slot_taken[2]) begin
+        sequencer0_operand_2 <= fifo_dout[24-1:0];
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: sequencer0_operand_register2_hold
-    if (reset == 0) begin
-        sequencer0_operand_2 <= 0;
-    end
-    else begin
-        if (sequencer0_slot_taken[2]) begin
-            sequencer0_operand_2 <= fifo_dout[24-1:0];
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: sequencer0_operand_register3_hold
-    if (reset == 0) begin
-        sequencer0_operand_3 <= 0;
-    end
-    else begin
-        if (sequencer0_slot_taken[3]) begin
-            sequencer0_operand_3 <= fifo_dout[24-1:0];
-        end
+always @(posedge clock) begin: sequencer0_operand_register3_hold
+    if (sequencer0_slot_taken[3]) begin
+        sequencer0_operand_3 <= fifo_dout[24-1:0];
     end
 end
 
@@ -3505,16 +3466,14 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
     if (reset == 0) begin
         sequencer0_bad_axes <= 0;
         sequencer0_bad_variant <= 0;
-        sequencer0_plane_u <= 0;
         sequencer0_next_motion <= 0;
         sequencer0_slots_left <= 0;
         sequencer0_bad_set_index <= 0;
         sequencer0_bad_opcode <= 0;
         sequencer0_word_due <= 0;
         sequencer0_next_valid <= 0;
-        sequencer0_plane_v <= 1;
-        sequencer0_header <= 0;
         sequencer0_bad_operand <= 0;
+        sequencer0_header <= 0;
         sequencer0_bad_header_bits <= 0;
         sequencer0_opcode <= 0;
         sequencer0_next_count <= 0;
@@ -3538,8 +3497,6 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
                     sequencer0_next_motion <= sequencer0_arriving_moves;
                     sequencer0_next_count <= sequencer0_arriving_operands;
                     sequencer0_slots_left <= sequencer0_arriving_slots;
-                    sequencer0_plane_u <= sequencer0_arriving_u;
-                    sequencer0_plane_v <= sequencer0_arriving_v;
                     sequencer0_bad_opcode <= (!sequencer0_arriving_known);
                     sequencer0_bad_header_bits <= sequencer0_arriving_reserved;
                     sequencer0_bad_axes <= sequencer0_arriving_out_of_range;
@@ -3712,7 +3669,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_dwell_count
 end
 
 
-always @(sequencer0_operand_0, sequencer0_plane_u, sequencer0_operand_3, sequencer0_operand_1, sequencer0_header, sequencer0_opcode, sequencer0_plane_v, sequencer0_operand_2) begin: sequencer0_present
+always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, sequencer0_header, sequencer0_opcode, sequencer0_operand_2) begin: sequencer0_present
     dda_line = (sequencer0_opcode == 1);
     dda_ccw = sequencer0_header[0];
     dda_blend = sequencer0_header[16];
@@ -3736,8 +3693,6 @@ always @(sequencer0_operand_0, sequencer0_plane_u, sequencer0_operand_3, sequenc
     set_index = sequencer0_header[4-1:0];
     set_value = sequencer0_operand_0;
     sequencer0_mark_tag = sequencer0_header[16-1:0];
-    axes_cmd_u = sequencer0_plane_u;
-    axes_cmd_v = sequencer0_plane_v;
 end
 
 

@@ -767,8 +767,6 @@ reg [31:0] card1_card_core1_regs_fifo2_sequencer2_operand_0;
 reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_1;
 reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_2;
 reg [23:0] card1_card_core1_regs_fifo2_sequencer2_operand_3;
-reg [0:0] card1_card_core1_regs_fifo2_sequencer2_plane_u;
-reg [0:0] card1_card_core1_regs_fifo2_sequencer2_plane_v;
 reg card1_card_core1_regs_fifo2_sequencer2_set_known;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_slot_taken;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_slots_left;
@@ -780,8 +778,6 @@ reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
-reg [0:0] card1_card_core1_regs_fifo2_sequencer2_arriving_u;
-reg [0:0] card1_card_core1_regs_fifo2_sequencer2_arriving_v;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_known;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range;
@@ -803,8 +799,6 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
-reg [0:0] card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u;
-reg [0:0] card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
@@ -973,8 +967,6 @@ reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
 reg card1_card_core1_regs_fifo2_status_words2_low_before;
 wire [1:0] card1_card_core1_regs_fifo2_status_words2_words_quadrant;
-reg [0:0] card1_card_core1_dda_axes1_u_run;
-reg [0:0] card1_card_core1_dda_axes1_v_run;
 reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_carry;
 reg [48:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap;
@@ -1135,10 +1127,6 @@ reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near;
 wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished;
-reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x;
-reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y;
-reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x;
-reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference;
@@ -1147,9 +1135,6 @@ reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_in;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_bias_out;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_step;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term;
-reg [1:0] card1_card_core1_dda_axes1__plane_queue1_moves;
-reg [0:0] card1_card_core1_dda_axes1__plane_queue1_u_next;
-reg [0:0] card1_card_core1_dda_axes1__plane_queue1_v_next;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
@@ -5641,16 +5626,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
         card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) && (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 3));
     end
     else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2)) begin
-        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] >= 2) || (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] >= 2) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == card1_card_core1_regs_fifo2_fifo_dout[20-1:17]) && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)) || (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0));
-    end
-end
-
-
-always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_plane
-    card1_card_core1_regs_fifo2_sequencer2_arriving_u = card1_card_core1_regs_fifo2_fifo_dout[13+:1];
-    card1_card_core1_regs_fifo2_sequencer2_arriving_v = card1_card_core1_regs_fifo2_fifo_dout[17+:1];
-    if (((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == 0) && (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] == 0))) begin
-        card1_card_core1_regs_fifo2_sequencer2_arriving_v = 1;
+        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] >= 2) || (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] >= 2) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == card1_card_core1_regs_fifo2_fifo_dout[20-1:17]) && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)) || (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) || (1'b1 && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)));
     end
 end
 
@@ -5668,56 +5644,36 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register8_hold
-    if (reset == 0) begin
+always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register8_hold
+    if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[0]) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout[32-1:0];
+    end
+    else if (card1_card_core1_regs_fifo2_sequencer2_line_in) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
     end
-    else begin
-        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[0]) begin
-            card1_card_core1_regs_fifo2_sequencer2_operand_0 <= card1_card_core1_regs_fifo2_fifo_dout[32-1:0];
-        end
-        else if (card1_card_core1_regs_fifo2_sequencer2_line_in) begin
-            card1_card_core1_regs_fifo2_sequencer2_operand_0 <= 0;
-        end
-    end
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register9_hold
-    if (reset == 0) begin
+always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register9_hold
+    if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[1]) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
+    end
+    else if (card1_card_core1_regs_fifo2_sequencer2_line_in) begin
         card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
     end
-    else begin
-        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[1]) begin
-            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
-        end
-        else if (card1_card_core1_regs_fifo2_sequencer2_line_in) begin
-            card1_card_core1_regs_fifo2_sequencer2_operand_1 <= 0;
-        end
+end
+
+
+always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register10_hold
+    if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[2]) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
     end
 end
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register10_hold
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_sequencer2_operand_2 <= 0;
-    end
-    else begin
-        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[2]) begin
-            card1_card_core1_regs_fifo2_sequencer2_operand_2 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
-        end
-    end
-end
-
-
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register11_hold
-    if (reset == 0) begin
-        card1_card_core1_regs_fifo2_sequencer2_operand_3 <= 0;
-    end
-    else begin
-        if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[3]) begin
-            card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
-        end
+always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register11_hold
+    if (card1_card_core1_regs_fifo2_sequencer2_slot_taken[3]) begin
+        card1_card_core1_regs_fifo2_sequencer2_operand_3 <= card1_card_core1_regs_fifo2_fifo_dout[24-1:0];
     end
 end
 
@@ -5839,16 +5795,14 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
     if (reset == 0) begin
         card1_card_core1_regs_fifo2_sequencer2_bad_axes <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_variant <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_plane_u <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_motion <= 0;
         card1_card_core1_regs_fifo2_sequencer2_slots_left <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_set_index <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= 0;
         card1_card_core1_regs_fifo2_sequencer2_word_due <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_valid <= 0;
-        card1_card_core1_regs_fifo2_sequencer2_plane_v <= 1;
-        card1_card_core1_regs_fifo2_sequencer2_header <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_operand <= 0;
+        card1_card_core1_regs_fifo2_sequencer2_header <= 0;
         card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= 0;
         card1_card_core1_regs_fifo2_sequencer2_opcode <= 0;
         card1_card_core1_regs_fifo2_sequencer2_next_count <= 0;
@@ -5872,8 +5826,6 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
                     card1_card_core1_regs_fifo2_sequencer2_next_motion <= card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
                     card1_card_core1_regs_fifo2_sequencer2_next_count <= card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
                     card1_card_core1_regs_fifo2_sequencer2_slots_left <= card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
-                    card1_card_core1_regs_fifo2_sequencer2_plane_u <= card1_card_core1_regs_fifo2_sequencer2_arriving_u;
-                    card1_card_core1_regs_fifo2_sequencer2_plane_v <= card1_card_core1_regs_fifo2_sequencer2_arriving_v;
                     card1_card_core1_regs_fifo2_sequencer2_bad_opcode <= (!card1_card_core1_regs_fifo2_sequencer2_arriving_known);
                     card1_card_core1_regs_fifo2_sequencer2_bad_header_bits <= card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
                     card1_card_core1_regs_fifo2_sequencer2_bad_axes <= card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range;
@@ -6046,7 +5998,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs_fifo2_sequencer2_plane_u, card1_card_core1_regs_fifo2_sequencer2_operand_3, card1_card_core1_regs_fifo2_sequencer2_operand_1, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_plane_v, card1_card_core1_regs_fifo2_sequencer2_operand_2) begin: card1_card_core1_regs_fifo2_sequencer2_present
+always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs_fifo2_sequencer2_operand_3, card1_card_core1_regs_fifo2_sequencer2_operand_1, card1_card_core1_regs_fifo2_sequencer2_header, card1_card_core1_regs_fifo2_sequencer2_opcode, card1_card_core1_regs_fifo2_sequencer2_operand_2) begin: card1_card_core1_regs_fifo2_sequencer2_present
     card1_card_core1_regs_fifo2_sequencer2_dda_line = (card1_card_core1_regs_fifo2_sequencer2_opcode == 1);
     card1_card_core1_regs_fifo2_sequencer2_dda_ccw = card1_card_core1_regs_fifo2_sequencer2_header[0];
     card1_card_core1_regs_fifo2_sequencer2_dda_blend = card1_card_core1_regs_fifo2_sequencer2_header[16];
@@ -6070,8 +6022,6 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
     card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
     card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
     card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
-    card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u = card1_card_core1_regs_fifo2_sequencer2_plane_u;
-    card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v = card1_card_core1_regs_fifo2_sequencer2_plane_v;
 end
 
 
@@ -8742,31 +8692,31 @@ always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_co
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece <= 0;
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending <= 0;
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_tail_taken <= 0;
-        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x <= 0;
+        card1_card_core1_regs_fifo2_steps_step_x <= 0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 0;
-        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x <= 0;
-        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y <= 0;
-        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_x <= 0;
+        card1_card_core1_regs_fifo2_steps_dir_y <= 0;
+        card1_card_core1_regs_fifo2_steps_step_y <= 0;
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_y <= 0;
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x <= 0;
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished <= 0;
     end
     else begin
-        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x <= 1'b0;
-        card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y <= 1'b0;
+        card1_card_core1_regs_fifo2_steps_step_x <= 1'b0;
+        card1_card_core1_regs_fifo2_steps_step_y <= 1'b0;
         card1_card_core1_regs_fifo2_sequencer2_dda_done <= 1'b0;
         card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending <= 1'b0;
         if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking) begin
             card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending <= 1'b1;
-            card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x;
-            card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y;
+            card1_card_core1_regs_fifo2_steps_step_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x;
+            card1_card_core1_regs_fifo2_steps_step_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_y;
             if (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_line) begin
-                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_right;
-                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_up;
+                card1_card_core1_regs_fifo2_steps_dir_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_right;
+                card1_card_core1_regs_fifo2_steps_dir_y <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_up;
             end
             else begin
-                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x <= ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
-                card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y <= ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_regs_fifo2_steps_dir_x <= ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[0] == card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[1]) != card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
+                card1_card_core1_regs_fifo2_steps_dir_y <= ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant[1]) == card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_x_inward);
             end
             card1_card_core1_regs_fifo2_sequencer2_dda_done <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_finished;
             card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_step_x <= card1_card_core1_dda_axes1_dda_arc2_dda_run2_go_x;
@@ -8912,62 +8862,5 @@ end
 
 assign card1_card_core1_regs_fifo2_status_words2_words_quadrant = card1_card_core1_dda_axes1_dda_arc2_dda_run2_quadrant;
 assign card1_card_core1_regs_fifo2_dda_busy = ((!card1_card_core1_regs_fifo2_sequencer2_dda_ready) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && (!(card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished))));
-
-
-always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1__plane_queue1_follow
-    reg [2-1:0] held;
-    if (card1_card_core1_dda_reset == 0) begin
-        card1_card_core1_dda_axes1__plane_queue1_u_next <= 0;
-        card1_card_core1_dda_axes1_v_run <= 1;
-        card1_card_core1_dda_axes1__plane_queue1_v_next <= 1;
-        card1_card_core1_dda_axes1__plane_queue1_moves <= 0;
-        card1_card_core1_dda_axes1_u_run <= 0;
-    end
-    else begin
-        held = 0;
-        if ((!card1_card_core1_regs_fifo2_sequencer2_dda_error)) begin
-            held = card1_card_core1_dda_axes1__plane_queue1_moves;
-        end
-        if ((card1_card_core1_regs_fifo2_sequencer2_dda_done && (held != 0))) begin
-            held = (held - 1);
-        end
-        if (card1_card_core1_regs_fifo2_sequencer2_dda_start) begin
-            card1_card_core1_dda_axes1__plane_queue1_moves <= (held + 1);
-            if ((held == 0)) begin
-                card1_card_core1_dda_axes1_u_run <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u;
-                card1_card_core1_dda_axes1_v_run <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v;
-            end
-            else begin
-                card1_card_core1_dda_axes1__plane_queue1_u_next <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_u;
-                card1_card_core1_dda_axes1__plane_queue1_v_next <= card1_card_core1_regs_fifo2_sequencer2_axes_cmd_v;
-            end
-        end
-        else begin
-            card1_card_core1_dda_axes1__plane_queue1_moves <= held;
-            if ((card1_card_core1_regs_fifo2_sequencer2_dda_done && (card1_card_core1_dda_axes1__plane_queue1_moves == 2))) begin
-                card1_card_core1_dda_axes1_u_run <= card1_card_core1_dda_axes1__plane_queue1_u_next;
-                card1_card_core1_dda_axes1_v_run <= card1_card_core1_dda_axes1__plane_queue1_v_next;
-            end
-        end
-    end
-end
-
-
-always @(card1_card_core1_dda_axes1_v_run, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x, card1_card_core1_dda_axes1_u_run) begin: card1_card_core1_dda_axes1_route_0_route
-    card1_card_core1_regs_fifo2_steps_step_x = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x && (card1_card_core1_dda_axes1_u_run == 0)) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y && (card1_card_core1_dda_axes1_v_run == 0)));
-    card1_card_core1_regs_fifo2_steps_dir_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y;
-    if ((card1_card_core1_dda_axes1_u_run == 0)) begin
-        card1_card_core1_regs_fifo2_steps_dir_x = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x;
-    end
-end
-
-
-always @(card1_card_core1_dda_axes1_v_run, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x, card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x, card1_card_core1_dda_axes1_u_run) begin: card1_card_core1_dda_axes1_route_1_route
-    card1_card_core1_regs_fifo2_steps_step_y = ((card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_x && (card1_card_core1_dda_axes1_u_run == 1)) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_step_y && (card1_card_core1_dda_axes1_v_run == 1)));
-    card1_card_core1_regs_fifo2_steps_dir_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_y;
-    if ((card1_card_core1_dda_axes1_u_run == 1)) begin
-        card1_card_core1_regs_fifo2_steps_dir_y = card1_card_core1_dda_axes1_dda_arc2_dda_run2_steps_dir_x;
-    end
-end
 
 endmodule

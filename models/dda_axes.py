@@ -85,7 +85,9 @@ def needed_axes(command):
         return 2
     if isinstance(command, AxesLineCommand):
         return max((2,) + tuple(axis + 1 for axis in _moving(command.deltas)))
-    return max((2,) + tuple(axis + 1 for axis in command.plane + _moving(command.helix)))
+    # a card of two axes turns arcs in X, Y only (its area, docs/axes.md): (Y, X) needs three
+    reversed_xy = 3 if tuple(command.plane) == XY[::-1] else 2
+    return max((reversed_xy,) + tuple(axis + 1 for axis in command.plane + _moving(command.helix)))
 
 
 def check_move(command, axes=MAX_AXES, coord_width=24):
@@ -118,6 +120,8 @@ def _check_arc_axes(command, axes, coord_width):
     u, v = command.plane
     if u == v or not (0 <= u < axes and 0 <= v < axes):
         raise ValueError(f"ARC: plane {command.plane} is not two different axes of the card's {axes}")
+    if axes == 2 and (u, v) != XY:
+        raise ValueError(f"ARC: plane {command.plane}: a card of two axes turns arcs in X, Y only")
     _check_axes(command.helix, axes, "ARC helix")
     helix = _moving(command.helix)
     if u in helix or v in helix:

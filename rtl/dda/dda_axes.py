@@ -22,8 +22,9 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
     The arc DDA (``dda_arc``, unchanged) runs every ARC in its (u, v)
     coordinates; ``_plane_queue`` keeps the plane of the move it runs and of
     the one it sets up meanwhile, and ``_route_axis`` puts its x outputs on
-    axis u, its y outputs on axis v (STEP and DIR).  On two axes it runs the
-    lines too (on X, Y).  On more axes a LINE goes to ``dda_linear``
+    axis u, its y outputs on axis v (STEP and DIR).  On two axes it is
+    ``dda_arc`` alone: arcs in X, Y only (a reversed plane would cost the
+    two-axis card its area), lines on X, Y.  On more axes a LINE goes to ``dda_linear``
     (``_line_queue``: its magnitudes wait in the line unit's port until the
     moves before it have ended, then ``load``): the next ``advance`` after
     the last iteration of the move before iterates it, so chained lines and
@@ -44,15 +45,11 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
     axes = steps.axes
     if axes_cmd.axes != axes:
         raise ValueError(f"dda_axes: axes_cmd of {axes_cmd.axes} axes, steps of {axes}")
+    if axes == 2:
+        # two axes: the arcs turn in X, Y only (the sequencer refuses another plane), the lines are the DDA's
+        return dda_arc(clock, reset, cmd, steps)
     arc_steps = AxisPulses(2)
     u_run, v_run = Signal(intbv(0)[len(axes_cmd.u):]), Signal(intbv(1)[len(axes_cmd.v):])
-    if axes == 2:
-        arc = cmd
-        units = [dda_arc(clock, reset, arc, arc_steps),
-                 _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run)]
-        units += [named(f"route_{axis}", _route_axis(arc_steps, u_run, v_run, axis, None, None, steps.step(axis),
-                                                     steps.dir(axis))) for axis in range(axes)]
-        return units
     arc = DdaPort(cmd.coord_width, cmd.variants)
     for name in _SHARED:
         setattr(arc, name, getattr(cmd, name))
@@ -106,23 +103,16 @@ def _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run):
 def _route_axis(arc_steps, u_run, v_run, axis, line_step, line_dir, step, direction):
     """Axis ``axis``'s ``step`` and ``direction``: the arc DDA's x outputs when
     it is the plane's u, its y outputs when it is v, the line unit's
-    (``line_step``, ``line_dir``; None on two axes) otherwise."""
-    if line_step is None:
-        @always_comb
-        def route():
-            step.next = (arc_steps.step_x and u_run == axis) or (arc_steps.step_y and v_run == axis)
+    (``line_step``, ``line_dir``) otherwise."""
+
+    @always_comb
+    def route():
+        step.next = (arc_steps.step_x and u_run == axis) or (arc_steps.step_y and v_run == axis) or line_step
+        direction.next = line_dir
+        if arc_steps.step_x and u_run == axis:
+            direction.next = arc_steps.dir_x
+        elif arc_steps.step_y and v_run == axis:
             direction.next = arc_steps.dir_y
-            if u_run == axis:
-                direction.next = arc_steps.dir_x
-    else:
-        @always_comb
-        def route():
-            step.next = (arc_steps.step_x and u_run == axis) or (arc_steps.step_y and v_run == axis) or line_step
-            direction.next = line_dir
-            if arc_steps.step_x and u_run == axis:
-                direction.next = arc_steps.dir_x
-            elif arc_steps.step_y and v_run == axis:
-                direction.next = arc_steps.dir_y
 
     return route
 

@@ -320,17 +320,17 @@ def axis_index_bits(axes):
 class AxesCommand:
     """What the sequencer gives the N-axis interpolator (``rtl/dda/dda_axes.py``)
     beside ``DdaPort``, read in the clock of ``DdaPort.start`` like the rest:
-    the plane ``u``, ``v`` (axis indices: an arc's (x, y) outputs step axes u
-    and v; X, Y for a line on a card of two axes) and, on a card of more
-    than two axes, each axis's signed displacement of a LINE
+    on a card of more than two axes, the plane ``u``, ``v`` (axis indices:
+    an arc's (x, y) outputs step axes u and v; a card of two axes turns arcs
+    in X, Y only) and each axis's signed displacement of a LINE
     (``delta_<axis>``, ``coord_width`` bits: the line runs through
     ``dda_linear``; on two axes a line is ``DdaPort``'s (``xe``, ``ye``))."""
 
     def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
         self.axes = axes
-        bits = axis_index_bits(axes)
-        self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
         if axes > 2:
+            bits = axis_index_bits(axes)
+            self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
             low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
             for suffix in axis_suffixes(axes):
                 setattr(self, f"delta_{suffix}", Signal(intbv(0, min=low, max=high)))

@@ -43,7 +43,7 @@ def command_header(word, header):
 
     RANGE (``out_of_range``, docs/axes.md): a LINE axis the card
     (``header.axes``) lacks; an ARC plane axis it lacks, or U_AXIS = V_AXIS
-    other than 0/0; a HELIX (not built yet: every HELIX axis is refused) and
+    other than 0/0, or on a card of two axes a plane other than X, Y; a HELIX (not built yet: every HELIX axis is refused) and
     a PULSE with AXES other than 0 or X and Y (not built yet).  The plane
     ``u``, ``v``: U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: a
     LINE's axes (0: X and Y), all ones otherwise: the sequencer puts each
@@ -77,6 +77,7 @@ def command_header(word, header):
     all_slots = (1 << slot_count) - 1
     ones_in = tuple(bin(mask).count("1") for mask in range(1 << mask_width))
     beyond = ((1 << mask_width) - 1) & ~((1 << axes) - 1)   # the mask bits of axes the card lacks
+    xy_only = axes == 2   # a card of two axes turns arcs in X, Y only (models.dda_axes.check_move)
 
     fixed_count, zero_count, lead_count, ones = (Signal(intbv(0)[4:]) for _ in range(4))
     has_axes = Signal(bool(0))
@@ -107,14 +108,8 @@ def command_header(word, header):
         elif word[32:isa.OPCODE_LSB] == arc_op:
             header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
                                         or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
-                                        or word[mask_msb:mask_lsb] != 0)
-
-    @always_comb
-    def plane():
-        header.u.next = word[u_lsb + index_bits:u_lsb]
-        header.v.next = word[v_lsb + index_bits:v_lsb]
-        if word[u_msb:u_lsb] == 0 and word[v_msb:v_lsb] == 0:
-            header.v.next = 1
+                                        or word[mask_msb:mask_lsb] != 0
+                                        or (xy_only and word[u_msb:u_lsb] != 0))
 
     @always_comb
     def slots():
@@ -125,7 +120,17 @@ def command_header(word, header):
             else:
                 header.slots.next = word[mask_lsb + slot_count:mask_lsb]
 
-    return lookups, frame, check_axes, plane, slots
+    planes = []
+    if axes > 2:   # a card of two axes turns arcs in X, Y only: no plane to read
+        @always_comb
+        def plane():
+            header.u.next = word[u_lsb + index_bits:u_lsb]
+            header.v.next = word[v_lsb + index_bits:v_lsb]
+            if word[u_msb:u_lsb] == 0 and word[v_msb:v_lsb] == 0:
+                header.v.next = 1
+
+        planes.append(plane)
+    return lookups, frame, check_axes, slots, planes
 
 
 @block

@@ -1,14 +1,17 @@
 """One operand register of the sequencer's instruction register."""
-from myhdl import always_comb, always_seq, block
+from myhdl import always, always_comb, block
 
 
 @block
-def operand_register(clock, reset, word, take, clear, register):
+def operand_register(clock, word, take, clear, register):
     """An operand register of ``rtl/regs/sequencer.py``: takes the low bits
     of ``word`` (the FIFO's output) at ``take``, else 0 at ``clear`` (a LINE
     header: the registers of the card's axes; None: never).  Ports: ``take``,
     ``clear`` (bits), ``word`` (32 bits), ``register`` (as wide as the bits
-    its operands need).  Parameters: none.
+    its operands need).  Parameters: none.  No reset: an operand is written
+    before it is read (the sequencer reads a command once all its words have
+    arrived), and a register without one clears with its flip-flops' own
+    synchronous reset (iCE40 SB_DFFESR), no logic per bit.
 
         clock     _/~\\_/~\\_/~\\_
         take      _/~~~\\_______
@@ -16,12 +19,12 @@ def operand_register(clock, reset, word, take, clear, register):
     """
     width = len(register)
     if clear is None:
-        @always_seq(clock.posedge, reset=reset)
+        @always(clock.posedge)
         def hold():
             if take:
                 register.next = word[width:]
     else:
-        @always_seq(clock.posedge, reset=reset)
+        @always(clock.posedge)
         def hold():
             if take:
                 register.next = word[width:]

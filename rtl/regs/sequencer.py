@@ -101,7 +101,6 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     operand_0, operand_1, operand_2, operand_3 = operands[:4]
     arriving = CommandHeader(axes, slot_count, OPERANDS_MAX)
     slots_left, slot_taken = Signal(intbv(0)[slot_count:]), Signal(intbv(0)[slot_count:])
-    plane_u, plane_v = Signal(intbv(0)[len(axes_cmd.u):]), Signal(intbv(1)[len(axes_cmd.v):])
     fetched = Signal(intbv(0, min=0, max=OPERANDS_MAX + 1))
     word_due = Signal(bool(0))
     next_valid = Signal(bool(0))
@@ -147,7 +146,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     tag_lsb, tag_msb = _field("MARK", "TAG")
     reading = command_header(fifo.dout, arriving)
     # an operand goes to the lowest register left (a LINE header clears those of its card's axes)
-    registers = [operand_register(clock, reset, fifo.dout, slot_taken(index), line_in if index < axes else None,
+    registers = [operand_register(clock, fifo.dout, slot_taken(index), line_in if index < axes else None,
                                    register) for index, register in enumerate(operands)]
 
     @always_comb
@@ -212,8 +211,6 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
                     next_motion.next = arriving.moves
                     next_count.next = arriving.operands
                     slots_left.next = arriving.slots
-                    plane_u.next = arriving.u
-                    plane_v.next = arriving.v
                     bad_opcode.next = not arriving.known
                     bad_header_bits.next = arriving.reserved
                     bad_axes.next = arriving.out_of_range
@@ -355,8 +352,6 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         set_port.index.next = header[index_msb:index_lsb]
         set_port.value.next = operand_0
         mark.tag.next = header[tag_msb:tag_lsb]
-        axes_cmd.u.next = plane_u
-        axes_cmd.v.next = plane_v
 
     @always_comb
     def report():
@@ -365,9 +360,24 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         control.motion_run.next = state == seq_t.S_MOTION
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
-    # a card of more than two axes: a LINE's displacement of axis i is operand register i
+    # a card of more than two axes: the plane (taken with the header), a LINE's displacement of axis i
+    # is operand register i; on two axes the arcs turn in X, Y only
+    header_in = Signal(bool(0))
     deltas = [signed_low(operands[axis], axes_cmd.delta(axis)) for axis in range(axes)] if axes > 2 else []
-    return (fits, reading, registers, deltas, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
+    planes = []
+    if axes > 2:
+        @always_comb
+        def header_arriving():
+            header_in.next = word_due and fetched == 0 and not control.clear and not discard
+
+        @always_seq(clock.posedge, reset=reset)
+        def plane():
+            if header_in:
+                axes_cmd.u.next = arriving.u
+                axes_cmd.v.next = arriving.v
+
+        planes = [header_arriving, plane]
+    return (fits, reading, registers, deltas, planes, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
             operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
             dwell_count, present, report)
 

@@ -40,7 +40,7 @@ WINDOW_DWORDS = 1 << (MEM_BAR_BITS - 2)
 # commands that stop the queue with each error (the values of sim/card/test_regs_fifo.py)
 BAD_COMMANDS = {
     "BAD_OPCODE": [0xF << isa.OPCODE_LSB],
-    "RESERVED_BITS": [isa.encode("LINE", 1, 1)[0] | 1 << 20, 1, 1],
+    "RESERVED_BITS": [isa.encode("LINE", 1, 1)[0] | 1 << 7, 1, 1],   # bit 7: no field of LINE
     "RANGE": isa.encode("LINE", 1 << 23, 0),
     "DDA_REJECTED": isa.encode("ARC", 10, 0, 0, 20, CCW=1, VARIANT=3),
 }

@@ -83,14 +83,25 @@ def line(*deltas, blend=False):
     return AxesLineCommand(tuple(deltas), blend=blend)
 
 
-def test_two_axis_card_takes_one_axis_lines_and_the_reversed_plane():
-    # LINE.AXES of X alone, Y alone, X and Y; an arc in the plane (Y, X): CCW from +Y towards +X
-    moves = [line(5, 0), line(0, -3), line(4, 2, blend=True), ArcCommand(10, 0, 0, 10, plane=(1, 0)),
-             ArcCommand(0, 10, 10, 0, ccw=False)]
+def test_two_axis_card_takes_one_axis_lines_and_refuses_the_reversed_plane():
+    # LINE.AXES of X alone, Y alone, X and Y; an arc with U_AXIS, V_AXIS = X, Y; an arc in the
+    # plane (Y, X): RANGE on two axes (docs/axes.md), the arc after it runs once the error is cleared
+    moves = [line(5, 0), line(0, -3), line(4, 2, blend=True), ArcCommand(10, 0, 0, 10), ArcCommand(0, 10, 10, 0)]
     words = (isa.encode("LINE", 5, AXES=0b01) + isa.encode("LINE", -3, AXES=0b10)
-             + isa.encode("LINE", 4, 2, AXES=0b11, BLEND=1) + command_words(moves[3]) + command_words(moves[4]))
+             + isa.encode("LINE", 4, 2, AXES=0b11, BLEND=1) + isa.encode("ARC", 10, 0, 0, 10, CCW=1, VARIANT=3,
+                                                                         U_AXIS=0, V_AXIS=1))
+    reversed_plane = isa.encode("ARC", 10, 0, 0, 10, CCW=1, VARIANT=3, U_AXIS=1, V_AXIS=0)
     results = {}
-    points = run_axes("card_axes_two", 2, motion(words, results))
+
+    def scenario(driver):
+        yield from start(driver)
+        yield from driver.push_all(words + reversed_plane + command_words(moves[4]))
+        results["error"] = yield from wait_error(driver, 400)
+        yield from driver.io_write(regmap.offset("COMMAND"), regmap.field_of("COMMAND", CLEAR_ERROR=1))
+        results["status"] = yield from wait_idle(driver)
+
+    points = run_axes("card_axes_two", 2, scenario)
+    assert results["error"] == isa.ERROR_CODE["RANGE"]
     assert points == axes_path(moves, 2)
     assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
 

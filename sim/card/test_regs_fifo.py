@@ -123,7 +123,7 @@ def test_fifo_full_retries_nothing_lost():
 
 MALFORMED = {  # case: (error code, words)
     "opcode": ("BAD_OPCODE", [0xF << isa.OPCODE_LSB]),
-    "reserved": ("RESERVED_BITS", [isa.encode("LINE", 1, 1)[0] | 1 << 20, 1, 1]),
+    "reserved": ("RESERVED_BITS", [isa.encode("LINE", 1, 1)[0] | 1 << 7, 1, 1]),   # bit 7: no field of LINE
     "coordinate": ("RANGE", isa.encode("LINE", 1 << 23, 0)),
     "set_index": ("RANGE", isa.encode("SET", 5, INDEX=15)),
     "off_circle": ("DDA_REJECTED", isa.encode("ARC", 10, 0, 0, 20, CCW=1, VARIANT=3)),

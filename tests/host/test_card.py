@@ -167,7 +167,7 @@ def test_queue_space_counts_the_fifo(card):
 
 @pytest.mark.parametrize("error, words", [
     ("BAD_OPCODE", [0xF0000000]),
-    ("RESERVED_BITS", [isa.encode("LINE", 1, 1)[0] | 1 << 20, 1, 1]),
+    ("RESERVED_BITS", [isa.encode("LINE", 1, 1)[0] | 1 << 7, 1, 1]),   # bit 7: no field of LINE (AXES is 25:20)
     ("RANGE", isa.encode("SET", 5, INDEX=15)),
     ("RANGE", isa.encode("LINE", 1 << 25, 0)),
     ("DDA_REJECTED", isa.encode("ARC", 5, 0, 0, 7, VARIANT=3)),
