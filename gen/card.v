@@ -389,26 +389,26 @@ wire card_core0_regs_fifo1_reg_word42_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word43_honoured;
+wire [9:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word43_shown;
+reg [9:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire card_core0_regs_fifo1_reg_word43_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-reg [7:0] card_core0_regs_fifo1_reg_word43_written;
+reg [9:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word44_honoured;
-reg [7:0] card_core0_regs_fifo1_reg_word44_shown;
+wire [9:0] card_core0_regs_fifo1_reg_word44_honoured;
+reg [9:0] card_core0_regs_fifo1_reg_word44_shown;
 wire card_core0_regs_fifo1_reg_word44_mine;
 wire card_core0_regs_fifo1_reg_word44_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
-wire [7:0] card_core0_regs_fifo1_reg_word44_written;
+wire [9:0] card_core0_regs_fifo1_reg_word44_written;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word44__store31_word_hw;
+reg [9:0] card_core0_regs_fifo1_reg_word44__store31_word_hw;
 reg [15:0] card_core0_regs_fifo1_reg_word45_honoured;
 reg card_core0_regs_fifo1_reg_word45_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word45_shown;
@@ -559,7 +559,7 @@ wire card_core0_regs_fifo1_reg_word61_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word62_shown;
+wire [28:0] card_core0_regs_fifo1_reg_word62_shown;
 wire card_core0_regs_fifo1_reg_word62_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word62_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word62_chain_out_data;
@@ -579,7 +579,7 @@ wire card_core0_regs_fifo1_reg_word64_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word64_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word64_chain_out_data;
 wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word65_shown;
+reg [18:0] card_core0_regs_fifo1_reg_word65_shown;
 wire card_core0_regs_fifo1_reg_word65_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
@@ -878,9 +878,12 @@ wire card_core0_regs_fifo1_input_filter1__input_count13_taken;
 wire card_core0_regs_fifo1_machine_guard1_estop;
 wire card_core0_regs_fifo1_machine_guard1_expired;
 wire [3:0] card_core0_regs_fifo1_machine_guard1_hits;
+wire card_core0_regs_fifo1_machine_guard1_lagging;
+wire [2:0] card_core0_regs_fifo1_machine_guard1_lagging_axis;
 wire card_core0_regs_fifo1_machine_guard1_passes;
-reg [1:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
+reg [2:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
 reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
+reg [2:0] card_core0_regs_fifo1_machine_guard1_guard_axis;
 wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_step;
 wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_dir;
 wire card_core0_regs_fifo1_machine_guard1_grant_y_granted_step;
@@ -914,6 +917,8 @@ reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
 reg card_core0_regs_fifo1_status_words1_low_before;
 wire [1:0] card_core0_regs_fifo1_status_words1_words_quadrant;
+wire card_core0_regs_fifo1_status_words1_words_index_fired;
+wire card_core0_regs_fifo1_status_words1_words_probe_fired;
 reg [4:0] card_core0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_arc1_dda_setup1_carry;
 reg [48:0] card_core0_dda_arc1_dda_setup1_gap;
@@ -1085,7 +1090,7 @@ reg [26:0] card_core0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037442;
+assign card_core0_regs_fifo1_reg_word39_shown = 32'd3719037443;
 assign card_core0_regs_fifo1_reg_word39_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word39_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word40_out_of_range = 1'd0;
@@ -1099,7 +1104,7 @@ assign card_core0_regs_fifo1_reg_word55_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word55_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word60_shown = 32'd33333333;
 assign card_core0_regs_fifo1_reg_word61_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word62_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word62_shown = 29'd786968;
 assign card_core0_regs_fifo1_reg_word63_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word63_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word66_out_of_range = 1'd0;
@@ -1112,7 +1117,11 @@ assign card_core0_regs_fifo1_reg_word73_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word74_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
+assign card_core0_regs_fifo1_machine_guard1_lagging = 1'd0;
+assign card_core0_regs_fifo1_machine_guard1_lagging_axis = 3'd0;
 assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
+assign card_core0_regs_fifo1_status_words1_words_index_fired = 1'd0;
+assign card_core0_regs_fifo1_status_words1_words_probe_fired = 1'd0;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
@@ -2611,7 +2620,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word43_shown};
+assign card_core0_regs_fifo1_reg_word43_shown_wide = {22'h0, card_core0_regs_fifo1_reg_word43_shown};
 
 
 
@@ -2620,16 +2629,16 @@ assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word43_shown_wide, card_core0_regs_fifo1_reg_word43_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word43_merge_bytes
     if ((card_core0_regs_fifo1_reg_word43_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[8-1:0];
+        card_core0_regs_fifo1_reg_word43_written = card_core0_regs_fifo1_set_value[10-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+        card_core0_regs_fifo1_reg_word43_written = ((card_core0_regs_fifo1_reg_word43_shown_wide[10-1:0] & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[10-1:0];
 
 
 
@@ -2666,7 +2675,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word44_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word44_shown};
+assign card_core0_regs_fifo1_reg_word44_shown_wide = {22'h0, card_core0_regs_fifo1_reg_word44_shown};
 
 
 
@@ -2674,11 +2683,11 @@ assign card_core0_regs_fifo1_reg_word44_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
+assign card_core0_regs_fifo1_reg_word44_written = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word44_honoured = card_core0_regs_fifo1_reg_word44_written[10-1:0];
 
 
 
@@ -3596,7 +3605,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word62_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word62_shown};
+assign card_core0_regs_fifo1_reg_word62_shown_wide = {3'h0, card_core0_regs_fifo1_reg_word62_shown};
 
 
 
@@ -3698,7 +3707,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word65_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word65_shown};
+assign card_core0_regs_fifo1_reg_word65_shown_wide = {13'h0, card_core0_regs_fifo1_reg_word65_shown};
 
 
 
@@ -5839,6 +5848,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
         pins_drive_enable <= 0;
         card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
         card_core0_regs_fifo1_machine_guard1_guard_reason <= 0;
+        card_core0_regs_fifo1_machine_guard1_guard_axis <= 0;
     end
     else begin
         stopped = (card_core0_regs_fifo1_guard_stopped != 0);
@@ -5849,6 +5859,12 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
                 card_core0_regs_fifo1_guard_stopping <= 0;
                 card_core0_regs_fifo1_machine_guard1_guard_reason <= 1;
                 card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+            end
+            else if (card_core0_regs_fifo1_machine_guard1_lagging) begin
+                stopped = 1'b1;
+                card_core0_regs_fifo1_machine_guard1_guard_reason <= 4;
+                card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+                card_core0_regs_fifo1_machine_guard1_guard_axis <= card_core0_regs_fifo1_machine_guard1_lagging_axis;
             end
             else if (card_core0_regs_fifo1_guard_stopping) begin
                 stopped = (card_core0_regs_fifo1_settled != 0);
@@ -5874,6 +5890,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
             stopped = 1'b0;
             card_core0_regs_fifo1_machine_guard1_guard_reason <= 0;
             card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+            card_core0_regs_fifo1_machine_guard1_guard_axis <= 0;
         end
         card_core0_regs_fifo1_guard_stopped <= stopped;
         pins_drive_enable <= (((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_machine_guard1_estop)) || (pins_drive_enable && card_core0_regs_fifo1_pulse_out1_control_pulsing));
@@ -6309,9 +6326,9 @@ always @(card_core0_regs_fifo1_status_words1_done_flag, card_core0_regs_fifo1_er
 end
 
 
-always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word77_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
-    reg [8-1:0] word;
-    word = 8'h0;
+always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_status_words1_words_index_fired, card_core0_regs_fifo1_reg_word45_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word77_chain_out_clamped, card_core0_regs_fifo1_status_words1_words_probe_fired, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
+    reg [10-1:0] word;
+    word = 10'h0;
     word[0] = (card_core0_regs_fifo1_status_words1_busy_before && (!card_core0_regs_fifo1_any_busy));
     word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word45_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_status_words1_error_before));
@@ -6320,6 +6337,8 @@ always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark
     word[5] = card_core0_regs_fifo1_guard_stop_event;
     word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
     word[7] = card_core0_regs_fifo1_homing1_port_ended;
+    word[8] = card_core0_regs_fifo1_status_words1_words_index_fired;
+    word[9] = card_core0_regs_fifo1_status_words1_words_probe_fired;
     card_core0_regs_fifo1_reg_word44__store31_word_hw = word;
 end
 
@@ -6328,9 +6347,9 @@ end
 assign irq = ((card_core0_regs_fifo1_reg_word44_shown & card_core0_regs_fifo1_reg_word43_shown) != 0);
 
 
-always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1_status_words1_assemble_machine
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason, card_core0_regs_fifo1_machine_guard1_guard_axis) begin: card_core0_regs_fifo1_status_words1_assemble_machine
     reg [20-1:0] word;
-    reg [8-1:0] why;
+    reg [19-1:0] why;
     word = 20'h0;
     word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw;
     word[8+:7] = card_core0_regs_fifo1_conditioning_active;
@@ -6339,9 +6358,10 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stoppi
     word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
     card_core0_regs_fifo1_reg_word64_shown = word;
-    why = 8'h0;
-    why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
+    why = 19'h0;
+    why[0+:3] = card_core0_regs_fifo1_machine_guard1_guard_reason;
     why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
+    why[16+:3] = card_core0_regs_fifo1_machine_guard1_guard_axis;
     card_core0_regs_fifo1_reg_word65_shown = why;
 end
 

@@ -5,7 +5,7 @@ from models import registers as regmap
 from models.axes import AXIS_NAMES
 from models.dda_build import variants_choice
 from models.parameters import COORD_WIDTH, Build
-from rtl.interfaces import (AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
+from rtl.interfaces import (AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, EncoderRegisters, FeedPort, FifoRead, Homing,
                             InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl,
                             RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords,
                             StepPositions, StepRequest, card_reset)
@@ -14,6 +14,7 @@ from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
 from rtl.regs.axis_block import axis_block
 from rtl.regs.direct_pulse import direct_pulse
+from rtl.regs.encoder_block import encoder_block
 from rtl.regs.feed_rate import feed_rate
 from rtl.regs.pulse_out import pulse_out
 from rtl.regs.pulse_source import pulse_source
@@ -82,11 +83,12 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
     if (dda.coord_width, variants_choice(dda.variants)) != (build.coord_width, build.variants):
         raise ValueError(f"regs_fifo: dda is a {dda.coord_width}-bit DdaPort of the variants "
                          f"{variants_choice(dda.variants)}, the build says {build.coord_width} and {build.variants}")
-    if pins.axes != build.axes:
-        raise ValueError(f"regs_fifo: pins of {pins.axes} axes, the build says {build.axes}")
+    if (pins.axes, pins.encoders) != (build.axes, build.encoders):
+        raise ValueError(f"regs_fifo: pins of {pins.axes} axes and encoders {pins.encoders}, the build says "
+                         f"{build.axes} and {build.encoders}")
     fifo_depth, axes = build.fifo_depth, build.axes
-    # BAR0's registers, then those only the per-axis blocks of Z, A, ... have (models/registers.py)
-    specs = regmap.REGISTERS + regmap.axis_registers(axes)
+    # BAR0's registers of the build, then those only the per-axis blocks have (models/registers.py)
+    specs = regmap.bar0_registers(build.as_dict()) + regmap.axis_registers(axes, build.as_dict())
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
     read_waited, read_word = Signal(bool(0)), Signal(intbv(0)[32:])
@@ -183,8 +185,16 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
                   search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
                   outputs_active=out_active, zero=home_zero, taken=hw["HOME"], state=hw["HOME_STATUS"],
                   home=home_inputs)
-    units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
+    units += [input_filter(clock, reset, conditioning),
+              machine_guard(clock, reset, guard, requests, granted, ferror_axes=axes if build.encoders else 0),
               homing(clock, reset, home)]
+    index_fired, probe_fired = Signal(bool(0)), Signal(bool(0))
+    if build.encoders:   # the encoder inputs (docs/encoders.md); their realignment follows the positions' setting
+        encoders = EncoderRegisters(axes, {r.name: words[r.name] for r in specs if r.option == "encoders"},
+                                    positions=position, clear_stop=clear_stop, index_fired=index_fired,
+                                    probe_fired=probe_fired)
+        units += [encoder_block(clock, reset, pins, encoders), _realign(clear_position, zero, encoders.realign),
+                  _ferror_bits(encoders.ferror, guard.ferror)]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
@@ -348,6 +358,7 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
             units.append(_direct_only(direct_out[axis], requests.step(axis), requests.dir(axis)))
     status = StatusWords(busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
+                         index_fired=index_fired, probe_fired=probe_fired,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
                          int_enable=values["INT_ENABLE"], position_x=position.x, position_y=pos_y_snapshot,
                          status=hw["STATUS"], int_set=hw["INT_STATUS"], mark_tag=hw["MARK_TAG"],
@@ -369,10 +380,43 @@ def _direct_only(out, step, direction):
     return pass_on
 
 
-def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes):
+@block
+def _realign(clear_position, zero, realign):
+    """An axis's position is set (CLEAR_POSITION: every axis; homing's ``zero``: its bit) at the coming edge."""
+
+    @always_comb
+    def setting():
+        if clear_position:
+            realign.next = (1 << len(realign)) - 1
+        else:
+            realign.next = zero
+
+    return setting
+
+
+@block
+def _ferror_bits(ferror, guard_ferror):
+    """The guard's ``ferror`` (one bit for every axis a card may have) from the build's axes' flags."""
+
+    pad = len(guard_ferror) - len(ferror)
+
+    @always_comb
+    def widen():
+        guard_ferror.next = concat(intbv(0)[pad:], ferror)
+
+    @always_comb
+    def copy():
+        guard_ferror.next = ferror
+
+    return widen if pad else copy
+
+
+def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes,
+                    encoders=Build.encoders):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
     ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``,
-    ``pins`` of ``axes`` axes (``steps``, the DDA's, has X and Y)."""
+    ``pins`` of ``axes`` axes (``steps``, the DDA's, has X and Y), with encoder pins with ``encoders``."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
-                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(), pins=MotorPins(axes),
+                dda=DdaPort(COORD_WIDTH.check(coord_width), variants), steps=AxisPulses(),
+                pins=MotorPins(axes, encoders),
                 irq=Signal(bool(0)), core_clear=Signal(bool(0)))

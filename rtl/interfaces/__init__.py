@@ -14,12 +14,13 @@ lines are 0 when asserted).
 from rtl.interfaces.bundle import axis_suffixes, card_reset, named
 from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, INPUT_LIMIT_NEG_X, INPUT_LIMIT_NEG_Y, INPUT_LIMIT_POS_X,
                                  INPUT_LIMIT_POS_Y, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
-                                 TIMING_BITS, AxisBlock, DirectPulseCommand, FeedPort, FifoRead, MarkPort, MotorPins, PulseCommand,
+                                 TIMING_BITS, ENCODER_PINS, AxisBlock, DirectPulseCommand, FeedPort, FifoRead, MarkPort,
+                                 MotorPins, PulseCommand,
                                  PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl,
                                  SetPort, StatusWords, StepPositions, StepRequest)
 from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxisPulses, DdaMove, DdaPlan, DdaPort, DdaRoot,
                                 DdaStep, LinearPort, SetupControl, SetupSequence)
-from rtl.interfaces.encoder import EncoderPins, EncoderPort, FollowingErrorPort, ProbePort, Timestamp
+from rtl.interfaces.encoder import EncoderPins, EncoderPort, EncoderRegisters, FollowingErrorPort, ProbePort, Timestamp
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBoundary, TargetBuffers, TargetControlNext,
                                 TargetDecode, TargetParity, TargetRequests, TargetState, TargetTransaction)
@@ -35,6 +36,6 @@ __all__ = [
     "PULSE_COUNT_BITS", "TIMING_BITS", "AxisBlock", "FifoRead", "SequencerControl", "PulseCommand", "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
     "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "INPUT_LIMIT_POS_X",
-    "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y", "EncoderPins", "EncoderPort", "Timestamp",
+    "INPUT_LIMIT_NEG_X", "INPUT_LIMIT_POS_Y", "INPUT_LIMIT_NEG_Y", "ENCODER_PINS", "EncoderPins", "EncoderPort", "EncoderRegisters", "Timestamp",
     "FollowingErrorPort", "ProbePort"
 ]
