@@ -26,7 +26,7 @@ from myhdl import always, block
 
 from models import registers as regmap
 from models.commands import command_words
-from models.parameters import AXES, CLOCK_HZ, PARAMETERS, Build
+from models.parameters import AXES, CLOCK_HZ, ENCODERS, PARAMETERS, Build
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, convert_unit
 from rtl.interfaces import MotorPins
@@ -49,15 +49,18 @@ INTA_LIMIT = 200000
 BAR_ROLES = {"io": 0, "mem": 1, "alias": 2}
 
 
-def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default, axes=AXES.default):
-    """``card.v`` for ``fifo_depth``, ``clock_hz`` (what CLOCK_HZ reports) and
-    ``axes``: ``gen/card.v`` for the defaults, else a conversion kept in
+def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default, axes=AXES.default, encoders=ENCODERS.default):
+    """``card.v`` for ``fifo_depth``, ``clock_hz`` (what CLOCK_HZ reports),
+    ``axes`` and ``encoders``: ``gen/card.v`` for the defaults, else a conversion kept in
     ``build/conv`` (``sim/backends/conversions.py``)."""
-    if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default and axes == AXES.default:
+    if (fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default and axes == AXES.default
+            and encoders == ENCODERS.default):
         return GEN_DIR / "card.v"
     params = {"fifo_depth": fifo_depth, "clock_hz": clock_hz}
     if axes != AXES.default:
         params["axes"] = AXES.check(axes)
+    if encoders != ENCODERS.default:
+        params["encoders"] = ENCODERS.check(encoders)
     return converted("card", repr(params), functools.partial(convert_unit, "card", params))
 
 
