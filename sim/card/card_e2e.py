@@ -77,12 +77,17 @@ class CardUnderTest:
     that bench's target (MyHDL, Icarus).  ``axes``: the card's build (Icarus: the
     two-axis top only)."""
 
-    def __init__(self, kind, fifo_depth, machine=None, axes=AXES.default):
+    def __init__(self, kind, fifo_depth, machine=None, axes=AXES.default, encoders=ENCODERS.default,
+                 pin_driver=None):
         if kind not in KINDS:
             raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
         if kind == "icarus" and axes != AXES.default:
             raise ValueError("the Icarus card bench runs the two-axis top only")
+        if kind == "icarus" and (encoders or pin_driver is not None):
+            raise ValueError("the Icarus card bench runs the top without encoders only")
         self.kind, self.fifo_depth, self.axes = kind, fifo_depth, AXES.check(axes)
+        # MyHDL: a card with encoders, and (block, *args): block(clock, reset, pins, *args) drives their pins
+        self.encoders, self.pin_driver = ENCODERS.check(encoders), pin_driver
         self.machine = machine   # a SimMachine on the input pins (MyHDL, Icarus; Verilator: in the harness)
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
         self.wait = CardWait(signal=kind != "verilator")
@@ -99,16 +104,20 @@ class CardUnderTest:
             def core(b):  # the X/Z report needs the bus model, which exists only later
                 return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
         else:
-            ports = card_ports(self.axes)
+            ports = card_ports(self.axes, self.encoders)
             ports["clock"], ports["reset"] = bench.clock, bench.reset
             agent, motor = ports["pci"], ports["pins"]
 
             def core(_):
-                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth, axes=self.axes))
+                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth, axes=self.axes,
+                                                         encoders=self.encoders))
         self.pins = motor
         capture = (pin_capture, (bench.clock, motor, self.log))
         waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
         extra = [(machine_process, (bench.clock, motor, self.machine))] if self.machine is not None else []
+        if self.pin_driver is not None:
+            driver, *more = self.pin_driver
+            extra.append((driver, (bench.clock, bench.reset, motor, *more)))
         return agent, lambda b: [core(b), capture, (bus_record, (b, self.samples)), waiter, *extra]
 
 

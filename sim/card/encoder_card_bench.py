@@ -5,18 +5,23 @@ timed from the pin edge to DRIVE_ENABLE low.
 
 ``EncoderCard`` is the card on the bus with its pins: ``feed`` queues samples (one a clock, per axis
 ``(a, b, index)`` and the probe level), ``idle`` clocks while the bus is quiet, ``read``/``write`` are
-register accesses (BAR0 below its end, else BAR2's blocks).  Every bus clock goes through
-``clock_edge``, so the pins change between any two edges, in a transaction or not: the Verilator
-bench's compiled waits (``CardWait``) are not used here.
+register accesses (BAR0 below its end, else BAR2's blocks).  On Verilator every bus clock goes
+through ``clock_edge``, so the pins change between any two edges, in a transaction or not (the
+bench's compiled waits, ``CardWait``, are not used here); on MyHDL (``kind`` "myhdl", slower: short
+runs) a process beside the card (``_pin_process``) sets the pins a time unit after each edge and
+clocks the models for that edge.
 """
 import random
 
+from myhdl import block, delay, instance
+
 from models import registers as regmap
-from models.encoder_model import FERROR_CLOCKS, FILTER_RESET, EncoderModel, ProbeModel, pin_to_count
+from models.encoder_model import FERROR_CLOCKS, FILTER_MAX, FILTER_RESET, EncoderModel, ProbeModel, pin_to_count
 from models.parameters import AXES
 from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.card.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_bars, card_verilog
+from sim.card.card_session import CardSession
 from sim.card.encoder_bench import encoder_waves
 from sim.pci.bench import TARGET_DEVICE
 from sim.pci.host_types import Clocks
@@ -41,13 +46,62 @@ class _PinBench(VerilatorBench):
             self.pins.after_edge()
 
 
-class EncoderCard:
-    """A card of ``axes`` axes built with encoders, reset and enumerated, its pins and models (module docstring)."""
+@block
+def _pin_process(clock, reset, pins, owner):
+    """MyHDL: after every edge the card took out of reset, the models clocked for it and the next pins set."""
 
-    def __init__(self, axes=AXES.default):
-        self.axes = axes
+    @instance
+    def drive():
+        owner.model = _MyhdlPins(pins)
+        running = False   # RST# was high before this edge: the card's flip-flops took it
+        while True:
+            yield clock.posedge
+            yield delay(1)   # the edge's outputs settled
+            if running:
+                owner.after_edge()
+                owner.before_edge()
+            running = bool(reset)
+
+    return drive
+
+
+class _MyhdlPins:
+    """The MyHDL card's pins (``MotorPins``) by the Verilator model's port names (``pins_enc_a_x``, ...)."""
+
+    def __init__(self, pins):
+        self.pins = pins
+
+    def __getitem__(self, name):
+        return int(getattr(self.pins, name[len("pins_"):]))
+
+    def __setitem__(self, name, value):
+        getattr(self.pins, name[len("pins_"):]).next = value
+
+
+class EncoderCard:
+    """A card of ``axes`` axes built with encoders, reset and enumerated, its pins and models (module
+    docstring); ``kind``: "verilator" or "myhdl"."""
+
+    def __init__(self, axes=AXES.default, kind="verilator"):
+        self.axes, self.kind = axes, kind
+        self._init_models()
+        if kind == "myhdl":
+            self.model = None   # _pin_process sets it as the simulation starts
+            self.session = CardSession("myhdl", axes=axes, name="encoder_card", card_options=dict(
+                encoders=1, pin_driver=(_pin_process, self)))
+            self.bench = self.session.bench   # the process set self.model
+            self.bars = self.session.bars
+            return
+        self.session = None
         card = VerilatedCard(card_verilog(DEFAULT_FIFO, axes=axes, encoders=1), idsel_bit=16 + TARGET_DEVICE)
         self.model = card.model
+        self.bench = _PinBench(card, CardUnderTest("verilator", DEFAULT_FIFO, axes=axes), self)
+        self.bench.start()
+        (device,) = self.call(self.bench.host.enumerate_bus(devices=[DEVICE]))
+        self.bars = card_bars(device)
+
+    def _init_models(self):
+        axes = self.axes
         self.encoders = [EncoderModel() for _ in range(axes)]
         self.probe = ProbeModel()
         self.levels = [(0, 0, 0)] * axes
@@ -56,10 +110,6 @@ class EncoderCard:
         self.edges = 0          # rising edges since RST# went high
         self.drive_low_at = None   # the first edge after which DRIVE_ENABLE read low, once it was high
         self._drive_seen = False
-        self.bench = _PinBench(card, CardUnderTest("verilator", DEFAULT_FIFO, axes=axes), self)
-        self.bench.start()
-        (device,) = self.call(self.bench.host.enumerate_bus(devices=[DEVICE]))
-        self.bars = card_bars(device)
 
     # ----- pins and models ------------------------------------------------------
     def _pin(self, name, axis):
@@ -91,7 +141,7 @@ class EncoderCard:
 
     # ----- the bus ----------------------------------------------------------------
     def call(self, scenario):
-        return self.bench.call(scenario)
+        return self.session.call(scenario) if self.session is not None else self.bench.call(scenario)
 
     def idle(self, clocks):
         def wait():
@@ -121,6 +171,9 @@ class EncoderCard:
         self.write(regmap.axis_register(name, axis).offset, value)
 
     def close(self):
+        if self.session is not None:
+            self.session.close()
+            return
         self.bench.finish()
         self.model.close()
 
@@ -142,11 +195,11 @@ def waveform(seed, clocks, axes):
     return [([w[i] for w in waves], int(probe_at <= i < probe_at + 8)) for i in range(length)]
 
 
-def compare_counts(seed, clocks=600, axes=AXES.default):
+def compare_counts(seed, clocks=600, axes=AXES.default, kind="verilator"):
     """Run ``waveform(seed, clocks)`` into a card with both latches armed; return ``(card words, model
     words)``: {register name: value} for every axis's ENC_COUNT, ENC_TIME, ENC_STATUS fields,
     ENC_INDEX_LATCH, INDEX_ARM, PROBE_ENC, and PROBE_CONTROL.ARM and INT_STATUS's INDEX and PROBE."""
-    card = EncoderCard(axes)
+    card = EncoderCard(axes, kind)
     try:
         for axis in range(axes):
             card.axis_write("ENC_CONTROL", axis, regmap.axis_spec("ENC_CONTROL").reset
@@ -157,6 +210,7 @@ def compare_counts(seed, clocks=600, axes=AXES.default):
         card.idle(4)   # the arms taken (the pins are still): the models armed at the same time
         card.feed(waveform(seed, clocks, axes))
         card.drain()
+        card.idle(FILTER_MAX + 8)   # the last edges through the filters: nothing changes while the reads run
         got, want = {}, {}
         for axis, model in enumerate(card.encoders):
             status, control = card.axis_read("ENC_STATUS", axis), card.axis_read("ENC_CONTROL", axis)

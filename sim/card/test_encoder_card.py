@@ -8,13 +8,28 @@ from sim.card.encoder_card_bench import REACTION_CLOCKS, compare_counts, followi
 pytestmark = pytest.mark.xdist_group("encoder_card")
 
 
-@pytest.mark.parametrize("seed", [1, 2])
-def test_counts_times_and_latches_read_over_pci_equal_the_models(seed):
-    got, want = compare_counts(seed, clocks=400)
+def _check_counts(seed, clocks, kind="verilator"):
+    got, want = compare_counts(seed, clocks=clocks, kind=kind)
     assert got == want
     # the waveform reached both latches and an error on some axis: the comparison covered them
     assert want["INT_PROBE"] == 1 and want["INT_INDEX"] == 1
     assert any(value for key, value in want.items() if key[1:] == ("QUAD_ERROR",))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_counts_times_and_latches_read_over_pci_equal_the_models(seed):
+    _check_counts(seed, 400)
+
+
+@pytest.mark.slow(reason="ten more seeds of the comparison above: a sweep, not needed on every run")
+@pytest.mark.parametrize("seed", range(3, 13))
+def test_counts_times_and_latches_equal_the_models_at_more_seeds(seed):
+    _check_counts(seed, 600)
+
+
+def test_counts_equal_the_models_on_the_myhdl_card_too():
+    # one short run of the same bench on the MyHDL card (the Verilator runs above carry the length)
+    _check_counts(3, 120, kind="myhdl")
 
 
 @pytest.mark.parametrize("axis", [0, 1])
