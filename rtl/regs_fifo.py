@@ -14,7 +14,7 @@ from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
 from rtl.regs.axis_block import axis_block
 from rtl.regs.direct_pulse import direct_pulse
-from rtl.regs.encoder_block import encoder_block
+from rtl.regs.encoder_block import encoder_block, guard_ferror, realign_on
 from rtl.regs.feed_rate import feed_rate
 from rtl.regs.pulse_out import pulse_out
 from rtl.regs.pulse_source import pulse_source
@@ -193,8 +193,8 @@ def regs_fifo(clock, reset, local, dda, steps, pins, irq, core_clear, *, build=B
         encoders = EncoderRegisters(axes, {r.name: words[r.name] for r in specs if r.option == "encoders"},
                                     positions=position, clear_stop=clear_stop, index_fired=index_fired,
                                     probe_fired=probe_fired)
-        units += [encoder_block(clock, reset, pins, encoders), _realign(clear_position, zero, encoders.realign),
-                  _ferror_bits(encoders.ferror, guard.ferror)]
+        units += [encoder_block(clock, reset, pins, encoders), realign_on(clear_position, zero, encoders.realign),
+                  guard_ferror(encoders.ferror, guard.ferror)]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
@@ -378,37 +378,6 @@ def _direct_only(out, step, direction):
         direction.next = out.dir
 
     return pass_on
-
-
-@block
-def _realign(clear_position, zero, realign):
-    """An axis's position is set (CLEAR_POSITION: every axis; homing's ``zero``: its bit) at the coming edge."""
-
-    @always_comb
-    def setting():
-        if clear_position:
-            realign.next = (1 << len(realign)) - 1
-        else:
-            realign.next = zero
-
-    return setting
-
-
-@block
-def _ferror_bits(ferror, guard_ferror):
-    """The guard's ``ferror`` (one bit for every axis a card may have) from the build's axes' flags."""
-
-    pad = len(guard_ferror) - len(ferror)
-
-    @always_comb
-    def widen():
-        guard_ferror.next = concat(intbv(0)[pad:], ferror)
-
-    @always_comb
-    def copy():
-        guard_ferror.next = ferror
-
-    return widen if pad else copy
 
 
 def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes,

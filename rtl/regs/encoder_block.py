@@ -1,6 +1,6 @@
 """The encoder registers: every axis's encoder and following error, the card's
 time stamp and probe, wired to their register words (docs/encoders.md)."""
-from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv, modbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv, modbv
 
 from models import registers as regmap
 from models.parameters import AXES
@@ -136,6 +136,36 @@ def _axis_encoder(clock, reset, pins, regs, coming, probe_port, fired, stop, *, 
 
     return (named("encoder", encoder(clock, reset, pin_set, port)),
             named("following_error", following_error(clock, reset, check)), realign, settings, words)
+
+
+@block
+def realign_on(clear_position, zero, realign):
+    """An axis's position is set (CLEAR_POSITION: every axis; homing's ``zero``: its bit) at the coming edge."""
+
+    @always_comb
+    def setting():
+        if clear_position:
+            realign.next = (1 << len(realign)) - 1
+        else:
+            realign.next = zero
+
+    return setting
+
+
+@block
+def guard_ferror(ferror, wide):
+    """``wide``, the guard's ``ferror`` (one bit for every axis a card may have), from the build's axes' flags."""
+    pad = len(wide) - len(ferror)
+
+    @always_comb
+    def widen():
+        wide.next = concat(intbv(0)[pad:], ferror)
+
+    @always_comb
+    def copy():
+        wide.next = ferror
+
+    return widen if pad else copy
 
 
 def encoder_block_ports(axes=AXES.default):
