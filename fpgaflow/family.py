@@ -89,6 +89,17 @@ class Family:
     def _parse_pins(self, text):
         raise NotImplementedError(self.key)
 
+    def top_constraints(self, ports, work):
+        """The pin file of a top with ``ports`` (port bit names): the family's own, with the
+        encoder pins of ``<name>_encoders<suffix>`` added for a build with encoders."""
+        extra = self.constraints.with_name(f"{self.constraints.stem}_encoders{self.constraints.suffix}")
+        wanted = {port for port in self._parse_pins(extra.read_text())} if extra.exists() else set()
+        if not wanted or not wanted <= ports:
+            return self.constraints
+        path = work / f"top_encoders{self.constraints.suffix}"
+        path.write_text(self.constraints.read_text() + extra.read_text())
+        return path
+
     def unit_constraints(self, clock_port, work, unit):
         """A constraint file with only ``clock_port`` on the whole top's clock ball."""
         ball = self.pins().get(clock_port)

@@ -144,7 +144,7 @@ def synthesised(unit, *, family=ICE40, gen_dir=GEN_DIR, wrap=False, build=None, 
     cells = netlist_figures(netlist, name, family)
     family.prepare_netlist(netlist, name, CLOCK_PORT)
     if unit == "top" and not wrap:
-        constraints = family.constraints
+        constraints = family.top_constraints(set(port_bits(load_module(netlist, name))), work)
         check_constraints(netlist, name, family, constraints)
     else:
         constraints = family.unit_constraints(CLOCK_PORT, work, name)

@@ -388,26 +388,26 @@ wire card_core0_regs_fifo1_reg_word44_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word44_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word44_chain_out_data;
 wire card_core0_regs_fifo1_reg_word44_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word45_honoured;
+wire [9:0] card_core0_regs_fifo1_reg_word45_honoured;
 wire card_core0_regs_fifo1_reg_word45_out_of_range;
-reg [7:0] card_core0_regs_fifo1_reg_word45_shown;
+reg [9:0] card_core0_regs_fifo1_reg_word45_shown;
 reg card_core0_regs_fifo1_reg_word45_clamped;
 wire card_core0_regs_fifo1_reg_word45_mine;
 wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-reg [7:0] card_core0_regs_fifo1_reg_word45_written;
+reg [9:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
-wire [7:0] card_core0_regs_fifo1_reg_word46_honoured;
-reg [7:0] card_core0_regs_fifo1_reg_word46_shown;
+wire [9:0] card_core0_regs_fifo1_reg_word46_honoured;
+reg [9:0] card_core0_regs_fifo1_reg_word46_shown;
 wire card_core0_regs_fifo1_reg_word46_mine;
 wire card_core0_regs_fifo1_reg_word46_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
-wire [7:0] card_core0_regs_fifo1_reg_word46_written;
+wire [9:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
-reg [7:0] card_core0_regs_fifo1_reg_word46__store31_word_hw;
+reg [9:0] card_core0_regs_fifo1_reg_word46__store31_word_hw;
 reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
 reg card_core0_regs_fifo1_reg_word47_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
@@ -558,7 +558,7 @@ wire card_core0_regs_fifo1_reg_word63_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word63_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word63_chain_out_data;
 wire card_core0_regs_fifo1_reg_word63_chain_out_clamped;
-wire [27:0] card_core0_regs_fifo1_reg_word64_shown;
+wire [28:0] card_core0_regs_fifo1_reg_word64_shown;
 wire card_core0_regs_fifo1_reg_word64_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word64_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word64_chain_out_data;
@@ -578,7 +578,7 @@ wire card_core0_regs_fifo1_reg_word66_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word66_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word66_chain_out_data;
 wire card_core0_regs_fifo1_reg_word66_chain_out_clamped;
-reg [15:0] card_core0_regs_fifo1_reg_word67_shown;
+reg [18:0] card_core0_regs_fifo1_reg_word67_shown;
 wire card_core0_regs_fifo1_reg_word67_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word67_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word67_chain_out_data;
@@ -900,9 +900,12 @@ wire card_core0_regs_fifo1_input_filter1__input_count13_taken;
 wire card_core0_regs_fifo1_machine_guard1_estop;
 wire card_core0_regs_fifo1_machine_guard1_expired;
 wire [3:0] card_core0_regs_fifo1_machine_guard1_hits;
+wire card_core0_regs_fifo1_machine_guard1_lagging;
+wire [2:0] card_core0_regs_fifo1_machine_guard1_lagging_axis;
 wire card_core0_regs_fifo1_machine_guard1_passes;
-reg [1:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
+reg [2:0] card_core0_regs_fifo1_machine_guard1_guard_reason;
 reg [3:0] card_core0_regs_fifo1_machine_guard1_guard_limits;
+reg [2:0] card_core0_regs_fifo1_machine_guard1_guard_axis;
 wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_step;
 wire card_core0_regs_fifo1_machine_guard1_grant_x_granted_dir;
 wire card_core0_regs_fifo1_machine_guard1_grant_y_granted_step;
@@ -944,6 +947,8 @@ reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
 reg card_core0_regs_fifo1_status_words1_low_before;
 wire [1:0] card_core0_regs_fifo1_status_words1_words_quadrant;
+wire card_core0_regs_fifo1_status_words1_words_index_fired;
+wire card_core0_regs_fifo1_status_words1_words_probe_fired;
 reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_acc_bits;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_carry;
 reg [48:0] card_core0_dda_axes0_dda_arc1_dda_setup1_gap;
@@ -1115,7 +1120,7 @@ reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word41_shown = 32'd3719037443;
+assign card_core0_regs_fifo1_reg_word41_shown = 32'd3719037444;
 assign card_core0_regs_fifo1_reg_word41_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word41_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word42_out_of_range = 1'd0;
@@ -1129,7 +1134,7 @@ assign card_core0_regs_fifo1_reg_word57_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word57_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word62_shown = 32'd33333333;
 assign card_core0_regs_fifo1_reg_word63_shown = 16'd512;
-assign card_core0_regs_fifo1_reg_word64_shown = 28'd786968;
+assign card_core0_regs_fifo1_reg_word64_shown = 29'd786968;
 assign card_core0_regs_fifo1_reg_word65_out_of_range = 1'd0;
 assign card_core0_regs_fifo1_reg_word65_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word68_out_of_range = 1'd0;
@@ -1142,7 +1147,11 @@ assign card_core0_regs_fifo1_reg_word75_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word76_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word79_set_mine = 1'd0;
+assign card_core0_regs_fifo1_machine_guard1_lagging = 1'd0;
+assign card_core0_regs_fifo1_machine_guard1_lagging_axis = 3'd0;
 assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
+assign card_core0_regs_fifo1_status_words1_words_index_fired = 1'd0;
+assign card_core0_regs_fifo1_status_words1_words_probe_fired = 1'd0;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
@@ -2647,7 +2656,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word45_shown};
+assign card_core0_regs_fifo1_reg_word45_shown_wide = {22'h0, card_core0_regs_fifo1_reg_word45_shown};
 
 
 
@@ -2656,16 +2665,16 @@ assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_writ
 
 always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word45_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
     if ((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[8-1:0];
+        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[10-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[8-1:0] & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[10-1:0] & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[10-1:0];
 
 
 
@@ -2702,7 +2711,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word46_shown_wide = {24'h0, card_core0_regs_fifo1_reg_word46_shown};
+assign card_core0_regs_fifo1_reg_word46_shown_wide = {22'h0, card_core0_regs_fifo1_reg_word46_shown};
 
 
 
@@ -2710,11 +2719,11 @@ assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word46_written = (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]);
+assign card_core0_regs_fifo1_reg_word46_written = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[8-1:0];
+assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[10-1:0];
 
 
 
@@ -3632,7 +3641,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word64_shown_wide = {4'h0, card_core0_regs_fifo1_reg_word64_shown};
+assign card_core0_regs_fifo1_reg_word64_shown_wide = {3'h0, card_core0_regs_fifo1_reg_word64_shown};
 
 
 
@@ -3734,7 +3743,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word67_shown_wide = {16'h0, card_core0_regs_fifo1_reg_word67_shown};
+assign card_core0_regs_fifo1_reg_word67_shown_wide = {13'h0, card_core0_regs_fifo1_reg_word67_shown};
 
 
 
@@ -6145,6 +6154,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
         pins_drive_enable <= 0;
         card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
         card_core0_regs_fifo1_machine_guard1_guard_reason <= 0;
+        card_core0_regs_fifo1_machine_guard1_guard_axis <= 0;
     end
     else begin
         stopped = (card_core0_regs_fifo1_guard_stopped != 0);
@@ -6155,6 +6165,12 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
                 card_core0_regs_fifo1_guard_stopping <= 0;
                 card_core0_regs_fifo1_machine_guard1_guard_reason <= 1;
                 card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+            end
+            else if (card_core0_regs_fifo1_machine_guard1_lagging) begin
+                stopped = 1'b1;
+                card_core0_regs_fifo1_machine_guard1_guard_reason <= 4;
+                card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+                card_core0_regs_fifo1_machine_guard1_guard_axis <= card_core0_regs_fifo1_machine_guard1_lagging_axis;
             end
             else if (card_core0_regs_fifo1_guard_stopping) begin
                 stopped = (card_core0_regs_fifo1_settled != 0);
@@ -6180,6 +6196,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_machine_guar
             stopped = 1'b0;
             card_core0_regs_fifo1_machine_guard1_guard_reason <= 0;
             card_core0_regs_fifo1_machine_guard1_guard_limits <= 0;
+            card_core0_regs_fifo1_machine_guard1_guard_axis <= 0;
         end
         card_core0_regs_fifo1_guard_stopped <= stopped;
         pins_drive_enable <= (((card_core0_regs_fifo1_machine_control[0] != 0) && (!stopped) && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_machine_guard1_estop)) || (pins_drive_enable && card_core0_regs_fifo1_pulse_out1_control_pulsing));
@@ -6631,9 +6648,9 @@ always @(card_core0_regs_fifo1_status_words1_done_flag, card_core0_regs_fifo1_er
 end
 
 
-always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_reg_word47_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word81_chain_out_clamped, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
-    reg [8-1:0] word;
-    word = 8'h0;
+always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark_strobe, card_core0_regs_fifo1_status_words1_error_before, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_status_words1_words_index_fired, card_core0_regs_fifo1_reg_word47_shown, card_core0_regs_fifo1_level_wide, card_core0_regs_fifo1_guard_stop_event, card_core0_regs_fifo1_reg_word81_chain_out_clamped, card_core0_regs_fifo1_status_words1_words_probe_fired, card_core0_regs_fifo1_status_words1_busy_before, card_core0_regs_fifo1_status_words1_low_before, card_core0_regs_fifo1_homing1_port_ended, card_core0_regs_fifo1_input_filter1_inputs_changed) begin: card_core0_regs_fifo1_status_words1_detect_events
+    reg [10-1:0] word;
+    word = 10'h0;
     word[0] = (card_core0_regs_fifo1_status_words1_busy_before && (!card_core0_regs_fifo1_any_busy));
     word[1] = ((card_core0_regs_fifo1_level_wide < card_core0_regs_fifo1_reg_word47_shown) && (!card_core0_regs_fifo1_status_words1_low_before));
     word[2] = ((card_core0_regs_fifo1_error_code != 0) && (!card_core0_regs_fifo1_status_words1_error_before));
@@ -6642,6 +6659,8 @@ always @(card_core0_regs_fifo1_error_code, card_core0_regs_fifo1_sequencer1_mark
     word[5] = card_core0_regs_fifo1_guard_stop_event;
     word[6] = card_core0_regs_fifo1_input_filter1_inputs_changed;
     word[7] = card_core0_regs_fifo1_homing1_port_ended;
+    word[8] = card_core0_regs_fifo1_status_words1_words_index_fired;
+    word[9] = card_core0_regs_fifo1_status_words1_words_probe_fired;
     card_core0_regs_fifo1_reg_word46__store31_word_hw = word;
 end
 
@@ -6650,9 +6669,9 @@ end
 assign irq = ((card_core0_regs_fifo1_reg_word46_shown & card_core0_regs_fifo1_reg_word45_shown) != 0);
 
 
-always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason) begin: card_core0_regs_fifo1_status_words1_assemble_machine
+always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_input_filter1_inputs_raw, pins_drive_enable, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_settled, card_core0_regs_fifo1_machine_guard1_guard_limits, card_core0_regs_fifo1_machine_guard1_guard_reason, card_core0_regs_fifo1_machine_guard1_guard_axis) begin: card_core0_regs_fifo1_status_words1_assemble_machine
     reg [20-1:0] word;
-    reg [16-1:0] why;
+    reg [19-1:0] why;
     word = 20'h0;
     word[0+:7] = card_core0_regs_fifo1_input_filter1_inputs_raw[7-1:0];
     word[8+:7] = card_core0_regs_fifo1_conditioning_active[7-1:0];
@@ -6661,9 +6680,10 @@ always @(card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_guard_stoppi
     word[18] = card_core0_regs_fifo1_settled;
     word[19] = card_core0_regs_fifo1_guard_stopping;
     card_core0_regs_fifo1_reg_word66_shown = word;
-    why = 16'h0;
-    why[0+:2] = card_core0_regs_fifo1_machine_guard1_guard_reason;
+    why = 19'h0;
+    why[0+:3] = card_core0_regs_fifo1_machine_guard1_guard_reason;
     why[4+:4] = card_core0_regs_fifo1_machine_guard1_guard_limits;
+    why[16+:3] = card_core0_regs_fifo1_machine_guard1_guard_axis;
     card_core0_regs_fifo1_reg_word67_shown = why;
     card_core0_regs_fifo1_reg_word80_shown = card_core0_regs_fifo1_input_filter1_inputs_raw;
     card_core0_regs_fifo1_reg_word81_shown = card_core0_regs_fifo1_conditioning_active;

@@ -295,26 +295,26 @@ wire reg_word3_mine;
 wire [31:0] reg_word3_shown_wide;
 reg [31:0] reg_word3_chain_out_data;
 wire reg_word3_chain_out_clamped;
-wire [7:0] reg_word4_honoured;
+wire [9:0] reg_word4_honoured;
 wire reg_word4_out_of_range;
-reg [7:0] reg_word4_shown;
+reg [9:0] reg_word4_shown;
 reg reg_word4_clamped;
 wire reg_word4_mine;
 wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
-reg [7:0] reg_word4_written;
+reg [9:0] reg_word4_written;
 reg [31:0] reg_word4_chain_out_data;
 wire reg_word4_chain_out_clamped;
-wire [7:0] reg_word5_honoured;
-reg [7:0] reg_word5_shown;
+wire [9:0] reg_word5_honoured;
+reg [9:0] reg_word5_shown;
 wire reg_word5_mine;
 wire reg_word5_mine_write;
 wire [31:0] reg_word5_shown_wide;
-wire [7:0] reg_word5_written;
+wire [9:0] reg_word5_written;
 reg [31:0] reg_word5_chain_out_data;
 wire reg_word5_chain_out_clamped;
-reg [7:0] reg_word5__store3_word_hw;
+reg [9:0] reg_word5__store3_word_hw;
 reg [15:0] reg_word6_honoured;
 reg reg_word6_out_of_range;
 reg [15:0] reg_word6_shown;
@@ -465,7 +465,7 @@ wire reg_word22_mine;
 wire [31:0] reg_word22_shown_wide;
 reg [31:0] reg_word22_chain_out_data;
 wire reg_word22_chain_out_clamped;
-wire [27:0] reg_word23_shown;
+wire [28:0] reg_word23_shown;
 wire reg_word23_mine;
 wire [31:0] reg_word23_shown_wide;
 reg [31:0] reg_word23_chain_out_data;
@@ -485,7 +485,7 @@ wire reg_word25_mine;
 wire [31:0] reg_word25_shown_wide;
 reg [31:0] reg_word25_chain_out_data;
 wire reg_word25_chain_out_clamped;
-reg [15:0] reg_word26_shown;
+reg [18:0] reg_word26_shown;
 wire reg_word26_mine;
 wire [31:0] reg_word26_shown_wide;
 reg [31:0] reg_word26_chain_out_data;
@@ -792,9 +792,12 @@ wire input_filter0__input_count6_taken;
 wire machine_guard0_estop;
 wire machine_guard0_expired;
 wire [3:0] machine_guard0_hits;
+wire machine_guard0_lagging;
+wire [2:0] machine_guard0_lagging_axis;
 wire machine_guard0_passes;
-reg [1:0] machine_guard0_guard_reason;
+reg [2:0] machine_guard0_guard_reason;
 reg [3:0] machine_guard0_guard_limits;
+reg [2:0] machine_guard0_guard_axis;
 wire machine_guard0_grant_x_granted_step;
 wire machine_guard0_grant_x_granted_dir;
 wire machine_guard0_grant_y_granted_step;
@@ -835,10 +838,12 @@ reg status_words0_busy_before;
 reg status_words0_done_flag;
 reg status_words0_error_before;
 reg status_words0_low_before;
+wire status_words0_words_index_fired;
+wire status_words0_words_probe_fired;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037443;
+assign reg_word0_shown = 32'd3719037444;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -852,7 +857,7 @@ assign reg_word16_out_of_range = 1'd0;
 assign reg_word16_set_mine = 1'd0;
 assign reg_word21_shown = 32'd33333333;
 assign reg_word22_shown = 16'd512;
-assign reg_word23_shown = 28'd786968;
+assign reg_word23_shown = 29'd786968;
 assign reg_word24_out_of_range = 1'd0;
 assign reg_word24_set_mine = 1'd0;
 assign reg_word27_out_of_range = 1'd0;
@@ -865,7 +870,11 @@ assign reg_word34_set_mine = 1'd0;
 assign reg_word35_set_mine = 1'd0;
 assign reg_word36_set_mine = 1'd0;
 assign reg_word38_set_mine = 1'd0;
+assign machine_guard0_lagging = 1'd0;
+assign machine_guard0_lagging_axis = 3'd0;
 assign pulse_source0_pulses_mask = 2'd3;
+assign status_words0_words_index_fired = 1'd0;
+assign status_words0_words_probe_fired = 1'd0;
 assign direct_busy[1] = direct_pulse1_command_busy;
 assign direct_busy[0] = direct_pulse0_command_busy;
 assign requested[1] = requests_step_y;
@@ -1149,7 +1158,7 @@ end
 
 
 
-assign reg_word4_shown_wide = {24'h0, reg_word4_shown};
+assign reg_word4_shown_wide = {22'h0, reg_word4_shown};
 
 
 
@@ -1158,16 +1167,16 @@ assign reg_word4_mine_write = (written_addr == 16);
 
 always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word4_merge_bytes
     if ((reg_word4_set_mine && (set_index == 0))) begin
-        reg_word4_written = set_value[8-1:0];
+        reg_word4_written = set_value[10-1:0];
     end
     else begin
-        reg_word4_written = ((reg_word4_shown_wide[8-1:0] & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+        reg_word4_written = ((reg_word4_shown_wide[10-1:0] & (~written_mask[10-1:0])) | (written_data[10-1:0] & written_mask[10-1:0]));
     end
 end
 
 
 
-assign reg_word4_honoured = reg_word4_written[8-1:0];
+assign reg_word4_honoured = reg_word4_written[10-1:0];
 
 
 
@@ -1204,7 +1213,7 @@ end
 
 
 
-assign reg_word5_shown_wide = {24'h0, reg_word5_shown};
+assign reg_word5_shown_wide = {22'h0, reg_word5_shown};
 
 
 
@@ -1212,11 +1221,11 @@ assign reg_word5_mine_write = (written_addr == 20);
 
 
 
-assign reg_word5_written = (written_data[8-1:0] & written_mask[8-1:0]);
+assign reg_word5_written = (written_data[10-1:0] & written_mask[10-1:0]);
 
 
 
-assign reg_word5_honoured = reg_word5_written[8-1:0];
+assign reg_word5_honoured = reg_word5_written[10-1:0];
 
 
 
@@ -2134,7 +2143,7 @@ end
 
 
 
-assign reg_word23_shown_wide = {4'h0, reg_word23_shown};
+assign reg_word23_shown_wide = {3'h0, reg_word23_shown};
 
 
 
@@ -2236,7 +2245,7 @@ end
 
 
 
-assign reg_word26_shown_wide = {16'h0, reg_word26_shown};
+assign reg_word26_shown_wide = {13'h0, reg_word26_shown};
 
 
 
@@ -4647,6 +4656,7 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
         pins_drive_enable <= 0;
         machine_guard0_guard_limits <= 0;
         machine_guard0_guard_reason <= 0;
+        machine_guard0_guard_axis <= 0;
     end
     else begin
         stopped = (guard_stopped != 0);
@@ -4657,6 +4667,12 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
                 guard_stopping <= 0;
                 machine_guard0_guard_reason <= 1;
                 machine_guard0_guard_limits <= 0;
+            end
+            else if (machine_guard0_lagging) begin
+                stopped = 1'b1;
+                machine_guard0_guard_reason <= 4;
+                machine_guard0_guard_limits <= 0;
+                machine_guard0_guard_axis <= machine_guard0_lagging_axis;
             end
             else if (guard_stopping) begin
                 stopped = (settled != 0);
@@ -4682,6 +4698,7 @@ always @(posedge clock, negedge reset) begin: machine_guard0_latch
             stopped = 1'b0;
             machine_guard0_guard_reason <= 0;
             machine_guard0_guard_limits <= 0;
+            machine_guard0_guard_axis <= 0;
         end
         guard_stopped <= stopped;
         pins_drive_enable <= (((machine_control[0] != 0) && (!stopped) && (!guard_stopped) && (!machine_guard0_estop)) || (pins_drive_enable && pulse_out0_control_pulsing));
@@ -5133,9 +5150,9 @@ always @(status_words0_done_flag, error_code, guard_stopped, any_busy, level_wid
 end
 
 
-always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, reg_word6_shown, level_wide, guard_stop_event, reg_word40_chain_out_clamped, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
-    reg [8-1:0] word;
-    word = 8'h0;
+always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_busy, status_words0_words_index_fired, reg_word6_shown, level_wide, guard_stop_event, reg_word40_chain_out_clamped, status_words0_words_probe_fired, status_words0_busy_before, status_words0_low_before, homing0_port_ended, input_filter0_inputs_changed) begin: status_words0_detect_events
+    reg [10-1:0] word;
+    word = 10'h0;
     word[0] = (status_words0_busy_before && (!any_busy));
     word[1] = ((level_wide < reg_word6_shown) && (!status_words0_low_before));
     word[2] = ((error_code != 0) && (!status_words0_error_before));
@@ -5144,6 +5161,8 @@ always @(error_code, sequencer0_mark_strobe, status_words0_error_before, any_bus
     word[5] = guard_stop_event;
     word[6] = input_filter0_inputs_changed;
     word[7] = homing0_port_ended;
+    word[8] = status_words0_words_index_fired;
+    word[9] = status_words0_words_probe_fired;
     reg_word5__store3_word_hw = word;
 end
 
@@ -5152,9 +5171,9 @@ end
 assign irq = ((reg_word5_shown & reg_word4_shown) != 0);
 
 
-always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason) begin: status_words0_assemble_machine
+always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_enable, conditioning_active, settled, machine_guard0_guard_limits, machine_guard0_guard_reason, machine_guard0_guard_axis) begin: status_words0_assemble_machine
     reg [20-1:0] word;
-    reg [16-1:0] why;
+    reg [19-1:0] why;
     word = 20'h0;
     word[0+:7] = input_filter0_inputs_raw[7-1:0];
     word[8+:7] = conditioning_active[7-1:0];
@@ -5163,9 +5182,10 @@ always @(guard_stopped, guard_stopping, input_filter0_inputs_raw, pins_drive_ena
     word[18] = settled;
     word[19] = guard_stopping;
     reg_word25_shown = word;
-    why = 16'h0;
-    why[0+:2] = machine_guard0_guard_reason;
+    why = 19'h0;
+    why[0+:3] = machine_guard0_guard_reason;
     why[4+:4] = machine_guard0_guard_limits;
+    why[16+:3] = machine_guard0_guard_axis;
     reg_word26_shown = why;
     reg_word39_shown = input_filter0_inputs_raw;
     reg_word40_shown = conditioning_active;

@@ -411,26 +411,26 @@ wire card1_card_core1_regs_fifo2_reg_word85_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word85_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word85_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
+wire [9:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
 wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word86_shown;
+reg [9:0] card1_card_core1_regs_fifo2_reg_word86_shown;
 reg card1_card_core1_regs_fifo2_reg_word86_clamped;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
 wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word86_written;
+reg [9:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+wire [9:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
+reg [9:0] card1_card_core1_regs_fifo2_reg_word87_shown;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
 wire card1_card_core1_regs_fifo2_reg_word87_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
-wire [7:0] card1_card_core1_regs_fifo2_reg_word87_written;
+wire [9:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
-reg [7:0] card1_card_core1_regs_fifo2_reg_word87__store59_word_hw;
+reg [9:0] card1_card_core1_regs_fifo2_reg_word87__store59_word_hw;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
 reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_shown;
@@ -581,7 +581,7 @@ wire card1_card_core1_regs_fifo2_reg_word104_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word104_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word104_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word104_chain_out_clamped;
-wire [27:0] card1_card_core1_regs_fifo2_reg_word105_shown;
+wire [28:0] card1_card_core1_regs_fifo2_reg_word105_shown;
 wire card1_card_core1_regs_fifo2_reg_word105_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word105_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word105_chain_out_data;
@@ -601,7 +601,7 @@ wire card1_card_core1_regs_fifo2_reg_word107_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word107_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word107_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word107_chain_out_clamped;
-reg [15:0] card1_card_core1_regs_fifo2_reg_word108_shown;
+reg [18:0] card1_card_core1_regs_fifo2_reg_word108_shown;
 wire card1_card_core1_regs_fifo2_reg_word108_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word108_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word108_chain_out_data;
@@ -923,9 +923,12 @@ wire card1_card_core1_regs_fifo2_input_filter2__input_count20_taken;
 wire card1_card_core1_regs_fifo2_machine_guard2_estop;
 wire card1_card_core1_regs_fifo2_machine_guard2_expired;
 wire [3:0] card1_card_core1_regs_fifo2_machine_guard2_hits;
+wire card1_card_core1_regs_fifo2_machine_guard2_lagging;
+wire [2:0] card1_card_core1_regs_fifo2_machine_guard2_lagging_axis;
 wire card1_card_core1_regs_fifo2_machine_guard2_passes;
-reg [1:0] card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
+reg [2:0] card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
 reg [3:0] card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+reg [2:0] card1_card_core1_regs_fifo2_machine_guard2_guard_axis;
 wire card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_step;
 wire card1_card_core1_regs_fifo2_machine_guard2_grant_x_granted_dir;
 wire card1_card_core1_regs_fifo2_machine_guard2_grant_y_granted_step;
@@ -967,6 +970,8 @@ reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
 reg card1_card_core1_regs_fifo2_status_words2_low_before;
 wire [1:0] card1_card_core1_regs_fifo2_status_words2_words_quadrant;
+wire card1_card_core1_regs_fifo2_status_words2_words_index_fired;
+wire card1_card_core1_regs_fifo2_status_words2_words_probe_fired;
 reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_acc_bits;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_carry;
 reg [48:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap;
@@ -1138,7 +1143,7 @@ reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown = 32'd3719037443;
+assign card1_card_core1_regs_fifo2_reg_word82_shown = 32'd3719037444;
 assign card1_card_core1_regs_fifo2_reg_word82_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word82_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word83_out_of_range = 1'd0;
@@ -1152,7 +1157,7 @@ assign card1_card_core1_regs_fifo2_reg_word98_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word98_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word103_shown = 32'd33333333;
 assign card1_card_core1_regs_fifo2_reg_word104_shown = 16'd512;
-assign card1_card_core1_regs_fifo2_reg_word105_shown = 28'd17564184;
+assign card1_card_core1_regs_fifo2_reg_word105_shown = 29'd17564184;
 assign card1_card_core1_regs_fifo2_reg_word106_out_of_range = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word106_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word109_out_of_range = 1'd0;
@@ -1165,7 +1170,11 @@ assign card1_card_core1_regs_fifo2_reg_word116_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word117_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word118_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word120_set_mine = 1'd0;
+assign card1_card_core1_regs_fifo2_machine_guard2_lagging = 1'd0;
+assign card1_card_core1_regs_fifo2_machine_guard2_lagging_axis = 3'd0;
 assign card1_card_core1_regs_fifo2_pulse_source4_pulses_mask = 2'd3;
+assign card1_card_core1_regs_fifo2_status_words2_words_index_fired = 1'd0;
+assign card1_card_core1_regs_fifo2_status_words2_words_probe_fired = 1'd0;
 
 
 
@@ -3478,7 +3487,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word86_shown};
+assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {22'h0, card1_card_core1_regs_fifo2_reg_word86_shown};
 
 
 
@@ -3487,16 +3496,16 @@ assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_reg
 
 always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
     if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[10-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[8-1:0] & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[10-1:0] & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]));
     end
 end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[8-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[10-1:0];
 
 
 
@@ -3533,7 +3542,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {24'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
+assign card1_card_core1_regs_fifo2_reg_word87_shown_wide = {22'h0, card1_card_core1_regs_fifo2_reg_word87_shown};
 
 
 
@@ -3541,11 +3550,11 @@ assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_written = (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word87_written = (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[8-1:0];
+assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[10-1:0];
 
 
 
@@ -4463,7 +4472,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {4'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
+assign card1_card_core1_regs_fifo2_reg_word105_shown_wide = {3'h0, card1_card_core1_regs_fifo2_reg_word105_shown};
 
 
 
@@ -4565,7 +4574,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {16'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
+assign card1_card_core1_regs_fifo2_reg_word108_shown_wide = {13'h0, card1_card_core1_regs_fifo2_reg_word108_shown};
 
 
 
@@ -6976,6 +6985,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
         motor_drive_enable <= 0;
         card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
         card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 0;
+        card1_card_core1_regs_fifo2_machine_guard2_guard_axis <= 0;
     end
     else begin
         stopped = (card1_card_core1_regs_fifo2_guard_stopped != 0);
@@ -6986,6 +6996,12 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
                 card1_card_core1_regs_fifo2_guard_stopping <= 0;
                 card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 1;
                 card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+            end
+            else if (card1_card_core1_regs_fifo2_machine_guard2_lagging) begin
+                stopped = 1'b1;
+                card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 4;
+                card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+                card1_card_core1_regs_fifo2_machine_guard2_guard_axis <= card1_card_core1_regs_fifo2_machine_guard2_lagging_axis;
             end
             else if (card1_card_core1_regs_fifo2_guard_stopping) begin
                 stopped = (card1_card_core1_regs_fifo2_settled != 0);
@@ -7011,6 +7027,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_machin
             stopped = 1'b0;
             card1_card_core1_regs_fifo2_machine_guard2_guard_reason <= 0;
             card1_card_core1_regs_fifo2_machine_guard2_guard_limits <= 0;
+            card1_card_core1_regs_fifo2_machine_guard2_guard_axis <= 0;
         end
         card1_card_core1_regs_fifo2_guard_stopped <= stopped;
         motor_drive_enable <= (((card1_card_core1_regs_fifo2_machine_control[0] != 0) && (!stopped) && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_machine_guard2_estop)) || (motor_drive_enable && card1_card_core1_regs_fifo2_pulse_out2_control_pulsing));
@@ -7462,9 +7479,9 @@ always @(card1_card_core1_regs_fifo2_status_words2_done_flag, card1_card_core1_r
 end
 
 
-always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_reg_word88_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
-    reg [8-1:0] word;
-    word = 8'h0;
+always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_sequencer2_mark_strobe, card1_card_core1_regs_fifo2_status_words2_error_before, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_status_words2_words_index_fired, card1_card_core1_regs_fifo2_reg_word88_shown, card1_card_core1_regs_fifo2_level_wide, card1_card_core1_regs_fifo2_guard_stop_event, card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped, card1_card_core1_regs_fifo2_status_words2_words_probe_fired, card1_card_core1_regs_fifo2_status_words2_busy_before, card1_card_core1_regs_fifo2_status_words2_low_before, card1_card_core1_regs_fifo2_homing2_port_ended, card1_card_core1_regs_fifo2_input_filter2_inputs_changed) begin: card1_card_core1_regs_fifo2_status_words2_detect_events
+    reg [10-1:0] word;
+    word = 10'h0;
     word[0] = (card1_card_core1_regs_fifo2_status_words2_busy_before && (!card1_card_core1_regs_fifo2_any_busy));
     word[1] = ((card1_card_core1_regs_fifo2_level_wide < card1_card_core1_regs_fifo2_reg_word88_shown) && (!card1_card_core1_regs_fifo2_status_words2_low_before));
     word[2] = ((card1_card_core1_regs_fifo2_error_code != 0) && (!card1_card_core1_regs_fifo2_status_words2_error_before));
@@ -7473,6 +7490,8 @@ always @(card1_card_core1_regs_fifo2_error_code, card1_card_core1_regs_fifo2_seq
     word[5] = card1_card_core1_regs_fifo2_guard_stop_event;
     word[6] = card1_card_core1_regs_fifo2_input_filter2_inputs_changed;
     word[7] = card1_card_core1_regs_fifo2_homing2_port_ended;
+    word[8] = card1_card_core1_regs_fifo2_status_words2_words_index_fired;
+    word[9] = card1_card_core1_regs_fifo2_status_words2_words_probe_fired;
     card1_card_core1_regs_fifo2_reg_word87__store59_word_hw = word;
 end
 
@@ -7481,9 +7500,9 @@ end
 assign card1_irq = ((card1_card_core1_regs_fifo2_reg_word87_shown & card1_card_core1_regs_fifo2_reg_word86_shown) != 0);
 
 
-always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason) begin: card1_card_core1_regs_fifo2_status_words2_assemble_machine
+always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_input_filter2_inputs_raw, motor_drive_enable, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_settled, card1_card_core1_regs_fifo2_machine_guard2_guard_limits, card1_card_core1_regs_fifo2_machine_guard2_guard_reason, card1_card_core1_regs_fifo2_machine_guard2_guard_axis) begin: card1_card_core1_regs_fifo2_status_words2_assemble_machine
     reg [20-1:0] word;
-    reg [16-1:0] why;
+    reg [19-1:0] why;
     word = 20'h0;
     word[0+:7] = card1_card_core1_regs_fifo2_input_filter2_inputs_raw[7-1:0];
     word[8+:7] = card1_card_core1_regs_fifo2_conditioning_active[7-1:0];
@@ -7492,9 +7511,10 @@ always @(card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_
     word[18] = card1_card_core1_regs_fifo2_settled;
     word[19] = card1_card_core1_regs_fifo2_guard_stopping;
     card1_card_core1_regs_fifo2_reg_word107_shown = word;
-    why = 16'h0;
-    why[0+:2] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
+    why = 19'h0;
+    why[0+:3] = card1_card_core1_regs_fifo2_machine_guard2_guard_reason;
     why[4+:4] = card1_card_core1_regs_fifo2_machine_guard2_guard_limits;
+    why[16+:3] = card1_card_core1_regs_fifo2_machine_guard2_guard_axis;
     card1_card_core1_regs_fifo2_reg_word108_shown = why;
     card1_card_core1_regs_fifo2_reg_word121_shown = card1_card_core1_regs_fifo2_input_filter2_inputs_raw;
     card1_card_core1_regs_fifo2_reg_word122_shown = card1_card_core1_regs_fifo2_conditioning_active;

@@ -73,6 +73,7 @@ class Identity:
     device: int         # BUILD.DEVICE
     vendor_id: int
     device_id: int
+    encoders: bool = False   # BUILD.ENCODERS: the card has encoder inputs and their registers
 
 
 def error_name(code):
@@ -91,7 +92,10 @@ class Card(MachineIO):
 
     # ----- registers -----------------------------------------------------------
     def read(self, name):
-        return self.transport.read(regmap.offset(name))
+        reg = regmap.register(name)
+        if reg.option is not None and not getattr(self.identity, reg.option):
+            raise ValueError(f"{name}: the card was built without {reg.option} (BUILD)")
+        return self.transport.read(reg.offset)
 
     def write(self, name, value):
         """Write register ``name``; a value outside its range is refused (the card would clamp it)."""
@@ -113,7 +117,10 @@ class Card(MachineIO):
         if not isinstance(axis, int) or not 0 <= axis < self.identity.axes:
             raise ValueError(f"axis {axis!r}: the card has {self.identity.axes} axes "
                              f"({names(range(self.identity.axes))})")
-        return regmap.axis_register(name, axis)
+        reg = regmap.axis_register(name, axis)
+        if reg.option is not None and not getattr(self.identity, reg.option):
+            raise ValueError(f"{reg.name}: the card was built without {reg.option} (BUILD)")
+        return reg
 
     def axis_read(self, name, axis):
         """The per-axis register ``name`` (POS, PULSE_PERIOD, PULSE_COUNT) of ``axis``."""
@@ -124,8 +131,10 @@ class Card(MachineIO):
         reg = self._axis_register(name, axis)
         if reg.access == "RO":
             raise ValueError(f"{reg.name} is read only")
-        if not reg.minimum <= value <= reg.maximum:
-            raise ValueError(f"{reg.name} = {value} is outside {reg.minimum}..{reg.maximum}")
+        low = reg.minimum if reg.minimum is not None else 0
+        high = reg.maximum if reg.maximum is not None else (1 << reg.width) - 1
+        if not low <= value <= high:
+            raise ValueError(f"{reg.name} = {value} is outside {low}..{high}")
         self.transport.write(reg.offset, value & 0xFFFFFFFF)
 
     # ----- identity and set-up --------------------------------------------------
@@ -149,7 +158,8 @@ class Card(MachineIO):
         return Identity((major, minor), self.read("CLOCK_HZ"), self.field("FIFO_SIZE", "WORDS"),
                         regmap.field_value("BUILD", "COORD_WIDTH", build), regmap.field_value("BUILD", "AXES", build),
                         tuple(v for v in range(4) if variants >> v & 1),
-                        regmap.field_value("BUILD", "DEVICE", build), ids & 0xFFFF, ids >> 16)
+                        regmap.field_value("BUILD", "DEVICE", build), ids & 0xFFFF, ids >> 16,
+                        bool(regmap.field_value("BUILD", "ENCODERS", build)))
 
     def clocks(self, nanoseconds):
         """Card clocks covering ``nanoseconds`` (rounded up)."""

@@ -12,7 +12,7 @@ import sys
 import time
 from pathlib import Path
 
-from host import gcode, svg
+from host import encoders, gcode, svg
 from host.card import Card
 from host.check import check
 from host.geometry import Arc, dimension
@@ -23,6 +23,7 @@ from host.stream import Stopped, stream
 from host.errors import ProgramError
 from host.transports import SIM_KINDS, open_transport
 from models.sim_machine import MachineConfig
+from models.axes import names
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
 
@@ -250,7 +251,20 @@ def info_command(options, refuse):
               f"device {ident.device}")
         print(f"status:      {card.status():#010x}; position {card.position()}; last MARK {card.last_mark()}")
         _machine_report(card)
+        _encoder_report(card)
     return 0
+
+
+def _encoder_report(card):
+    """``info``'s encoders: per axis count, index latch, following error, quadrature errors."""
+    if not card.identity.encoders:
+        print("encoders:    none (BUILD.ENCODERS 0)")
+        return
+    for axis in range(card.identity.axes):
+        reading = encoders.read_encoder(card, axis)
+        print(f"encoder {names([axis])}:   count {reading.count}, index latch {reading.index_latch}"
+              f"{' (armed)' if reading.index_armed else ''}, following error {reading.ferror}, "
+              f"quadrature errors {reading.error_count}{' (flagged)' if reading.quad_error else ''}")
 
 
 def _machine_report(card):

@@ -100,9 +100,12 @@ class MachineIO:
                      if name.startswith("LIMIT") and active >> bit & 1)
 
     def stop_reason(self):
-        """(reason, limits): STOP_REASON as names, ``("NONE", ())`` while not stopped."""
+        """(reason, which): STOP_REASON as names, ``("NONE", ())`` while not stopped; ``which``: the
+        limits of a LIMIT stop, the axis of a FOLLOWING_ERROR stop (``("X",)``)."""
         word = self.read("STOP_REASON")
         reason = regmap.STOP_REASONS[regmap.field_value("STOP_REASON", "REASON", word)]
+        if reason == "FOLLOWING_ERROR":
+            return reason, (AXIS_NAMES[regmap.field_value("STOP_REASON", "AXIS", word)],)
         hit = regmap.field_value("STOP_REASON", "LIMITS", word)
         return reason, tuple(name for bit, name in enumerate(regmap.LIMIT_NAMES) if hit >> bit & 1)
 

@@ -29,6 +29,7 @@ static const char *reason_name(int reason)
     case DDA_STOP_ESTOP: return "its E-stop input";
     case DDA_STOP_WATCHDOG: return "its watchdog (the servo thread stopped writing it in time)";
     case DDA_STOP_LIMIT: return "a limit switch";
+    case DDA_STOP_FOLLOWING_ERROR: return "a following error beyond FERROR_LIMIT (STOP_REASON.AXIS names the axis)";
     default: return "an unknown reason";
     }
 }

@@ -63,6 +63,7 @@ class Parameter:
     device_maximum: dict = field(default_factory=dict)
     unit_defaults: dict = field(default_factory=dict)
     hex_digits: int = 0  # shown in hexadecimal with this many digits
+    flag: bool = False   # 0 or 1, given on the command line as a bare option (``--encoders``: 1)
 
     @property
     def option(self):
@@ -147,6 +148,11 @@ _TABLE = (
               f"{' '.join(AXIS_NAMES)} (docs/axes.md)", 2, MAX_AXES,
               reason=f"2: an arc needs a plane of two axes; {MAX_AXES}: the axis names "
               f"{' '.join(AXIS_NAMES)} and the {MAX_AXES}-bit axis masks of LINE.AXES, ARC.HELIX and PULSE.AXES"),
+    Parameter("encoders", 0, "1: encoder inputs on every axis, the probe input, the following-error stop "
+              "and their registers, reported in BUILD.ENCODERS (docs/encoders.md; the command line's bare "
+              "--encoders)", 0, 1, flag=True,
+              reason="an option: one axis's encoder and following error is about 790 iCE40 cells, more "
+              "than the two-axis HX8K card has left"),
     Parameter("coord_width", 24, "signed coordinate width of the DDA, in bits", 14, 29,
               reason="14: STOP_LEFT, coord_width + 3 bits, must be wider than the feed-rate ramp's "
               "16-bit count; 29: wider coordinates give STOP_LEFT a reset value above 32 bits, which "
@@ -178,8 +184,8 @@ _TABLE = (
 )
 PARAMETERS = {p.name: p for p in _TABLE}
 PCI_IDS = ("vendor_id", "device_id", "revision_id", "class_code", "subsystem_vendor_id", "subsystem_id")
-DEVICE, VARIANTS, AXES, COORD_WIDTH, FIFO_DEPTH, CLOCK_HZ = (
-    PARAMETERS[name] for name in ("device", "variants", "axes", "coord_width", "fifo_depth", "clock_hz"))
+DEVICE, VARIANTS, AXES, ENCODERS, COORD_WIDTH, FIFO_DEPTH, CLOCK_HZ = (
+    PARAMETERS[name] for name in ("device", "variants", "axes", "encoders", "coord_width", "fifo_depth", "clock_hz"))
 
 
 def _known(values):

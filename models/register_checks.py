@@ -10,8 +10,9 @@ def _shape(reg):
 
 
 def check_table(registers=None):
-    """Raise ValueError when the table (``registers``; default: ``REGISTERS``) contradicts itself."""
-    registers = regmap.REGISTERS if registers is None else registers
+    """Raise ValueError when the table (``registers``; default: ``REGISTERS`` and
+    ``ENCODER_REGISTERS``) contradicts itself."""
+    registers = regmap.REGISTERS + regmap.ENCODER_REGISTERS if registers is None else registers
     offsets, set_indices = set(), set()
     for reg in registers:
         if reg.access not in regmap.ACCESS_KINDS:
@@ -37,6 +38,9 @@ def check_table(registers=None):
             # a number the host writes: without a range a too-large write would be cut to the
             # field's width (a WATCHDOG of 2**24 would read 0: off) instead of clamped and flagged
             raise ValueError(f"{reg.name}: a one-value register the host writes declares its range")
+        option = parameters.PARAMETERS.get(reg.option)
+        if reg.option is not None and (option is None or (option.minimum, option.maximum) != (0, 1)):
+            raise ValueError(f"{reg.name}: option {reg.option!r} is no 0/1 build parameter")
         for item in reg.fields:
             if item.cleared is not None and reg.access != "RW":
                 raise ValueError(f"{reg.name}.{item.name}: only an RW field is cleared by the hardware")
@@ -47,15 +51,20 @@ def check_table(registers=None):
 
 def check_axis_block(axis_registers=None):
     """Raise ValueError when the per-axis block (``axis_registers``; default: ``AXIS_REGISTERS``)
-    contradicts itself, differs from X's and Y's BAR0 registers or does not fit BAR2."""
+    contradicts itself, differs from X's and Y's BAR0 registers or does not fit BAR2.  A block
+    register is BAR0's for X and Y when BAR0 has <REG>_X and <REG>_Y (of the same shape), or the
+    block's only when BAR0 has neither; the block keeps ``AXIS_FREE`` free."""
     axis_registers = regmap.AXIS_REGISTERS if axis_registers is None else axis_registers
     check_table(axis_registers)
+    bar0 = {reg.name: reg for reg in regmap.REGISTERS + regmap.ENCODER_REGISTERS}
     for spec in axis_registers:
-        if spec.offset >= regmap.AXIS_STRIDE or spec.set_index is not None:
-            raise ValueError(f"{spec.name}: outside its block, or with a SET index")
-        for axis in range(regmap.BAR0_AXES):
-            same = regmap.register(f"{spec.name}_{AXIS_NAMES[axis]}")
-            if _shape(same) != _shape(spec):
+        if spec.offset >= regmap.AXIS_STRIDE or spec.set_index is not None or spec.offset in regmap.AXIS_FREE:
+            raise ValueError(f"{spec.name}: outside its block, on a place kept free, or with a SET index")
+        shared = [bar0.get(f"{spec.name}_{AXIS_NAMES[axis]}") for axis in range(regmap.BAR0_AXES)]
+        if any(same is None for same in shared) and any(same is not None for same in shared):
+            raise ValueError(f"{spec.name}: BAR0 has it for some of X and Y only")
+        for same in shared:
+            if same is not None and (_shape(same) != _shape(spec) or same.option != spec.option):
                 raise ValueError(f"{same.name}: not the register {spec.name} of the block describes")
     blocks_end = regmap.AXIS_BLOCK_BASE + regmap.AXIS_STRIDE * len(AXIS_NAMES)
     if regmap.AXIS_BLOCK_BASE < 1 << regmap.IO_BAR_BITS or blocks_end > 1 << regmap.REG_BAR_BITS:

@@ -5,8 +5,16 @@ from pathlib import Path
 
 from models import instructions
 from models.axes import AXIS_NAMES
-from models.registers import (AXIS_BLOCK_BASE, AXIS_REGISTERS, AXIS_STRIDE, BAR0_AXES, IO_BAR_BITS, REG_BAR_BITS,
-                              REGISTERS, VERSION, VERSIONS, axis_offset, axis_register, build_word)
+from models.registers import (AXIS_BLOCK_BASE, AXIS_FREE, AXIS_REGISTERS, AXIS_STRIDE, BAR0_AXES, ENCODER_REGISTERS,
+                              IO_BAR_BITS, REG_BAR_BITS, REGISTERS, VERSION, VERSIONS, axis_offset, axis_register,
+                              build_word, in_bar0)
+
+ALL_BAR0 = tuple(sorted(REGISTERS + ENCODER_REGISTERS, key=lambda r: r.offset))
+
+
+def _text(reg):
+    """The register's description, with the build option it needs."""
+    return reg.text if reg.option is None else f"{reg.text} (a build with {reg.option} only)"
 
 
 def markdown():
@@ -39,16 +47,20 @@ def markdown():
         "INT_STATUS.CLAMPED); W1C write 1 to clear; W1S write 1 to set; WP write",
         "pulse (the write acts once, reads return the hardware's value).",
         "",
+        "Registers marked \"a build with encoders only\" exist on a card built with the build",
+        "parameter `encoders` (BUILD.ENCODERS = 1, `python -m rtl.top --convert --encoders`); a card",
+        "without reads 0 there and ignores writes, as at every unlisted offset.",
+        "",
         "| offset | name | access | reset | min | max | SET index | description |",
         "| --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
-    for reg in REGISTERS:
+    for reg in ALL_BAR0:
         lines.append(
             f"| {reg.offset:#04x} | {reg.name} | {reg.access} | {reg.reset:#x} | "
-            f"{_blank(reg.minimum)} | {_blank(reg.maximum)} | {_blank(reg.set_index)} | {reg.text} |")
+            f"{_blank(reg.minimum)} | {_blank(reg.maximum)} | {_blank(reg.set_index)} | {_text(reg)} |")
     lines.append("")
-    for reg in REGISTERS:
-        lines += [f"## {reg.name} ({reg.offset:#04x}, {reg.access})", "", reg.text, "",
+    for reg in ALL_BAR0:
+        lines += [f"## {reg.name} ({reg.offset:#04x}, {reg.access})", "", _text(reg), "",
                   "| bits | field | description |", "| --- | --- | --- |"]
         lines += [_field_row(item) for item in reg.fields]
         lines.append("")
@@ -63,14 +75,17 @@ def _axis_markdown():
         f"Every axis the card has (BUILD.AXES; {', '.join(AXIS_NAMES)} are axes 0 to {len(AXIS_NAMES) - 1}) has a block of",
         f"registers in BAR2 at {AXIS_BLOCK_BASE:#05x} + {AXIS_STRIDE:#04x} * axis (`DDA_AXIS_BLOCK_BASE`,",
         "`DDA_AXIS_STRIDE`, `DDA_AXIS_<REG>_OFFSET(axis)` in `gen/dda_card.h`); the offsets below are",
-        "inside the block.  The blocks of X and Y hold BAR0's own registers (the same",
-        "flip-flops, reached at both offsets, with the same side effects): " + ", ".join(
+        "inside the block.  The blocks of X and Y hold BAR0's own registers where BAR0 has them (the",
+        "same flip-flops, reached at both offsets, with the same side effects): " + ", ".join(
             f"{spec.name} = {'/'.join(axis_register(spec.name, axis).name for axis in range(BAR0_AXES))}"
-            for spec in AXIS_REGISTERS) + ".",
-        "The blocks of Z, A, B and C are BAR2's only (the I/O BAR keeps to PCI's 256 bytes).",
+            for spec in AXIS_REGISTERS if in_bar0(spec.name)) + ".",
+        "The other block registers (" + ", ".join(spec.name for spec in AXIS_REGISTERS if not in_bar0(spec.name))
+        + ") are the blocks' only, for every axis, named <REG>_X, <REG>_Y, <REG>_Z, ...; the blocks",
+        "of Z, A, B and C are BAR2's only (the I/O BAR keeps to PCI's 256 bytes).",
         "A block offset no register uses, and the block of an axis the build lacks, read 0",
-        "and ignore writes, as every unlisted offset does; the rest of each block is kept for",
-        "the axis's next registers (encoder inputs).",
+        "and ignore writes, as every unlisted offset does; block offset " + ", ".join(
+            f"{free:#04x}" for free in AXIS_FREE) + " is kept for the axis's homing registers, the rest",
+        "for more.",
         "",
         "Positions at one instant: a read of X's POS (POS_X, in BAR0 or at",
         f"{axis_offset('POS', 0):#05x}) returns X's position and captures every other axis's in the same",
@@ -82,7 +97,7 @@ def _axis_markdown():
     ]
     for reg in AXIS_REGISTERS:
         lines.append(f"| {reg.offset:#04x} | {reg.name} | {reg.access} | {reg.reset:#x} | {_blank(reg.minimum)} | "
-                     f"{_blank(reg.maximum)} | {reg.text} |")
+                     f"{_blank(reg.maximum)} | {_text(reg)} |")
     lines += ["", "| axis | block | " + " | ".join(reg.name for reg in AXIS_REGISTERS) + " |",
               "| --- | --- | " + " | ".join("---" for _ in AXIS_REGISTERS) + " |"]
     for axis, name in enumerate(AXIS_NAMES):
@@ -90,7 +105,7 @@ def _axis_markdown():
         lines.append(f"| {axis} {name} | {AXIS_BLOCK_BASE + AXIS_STRIDE * axis:#05x} | " + " | ".join(cells) + " |")
     lines.append("")
     for reg in AXIS_REGISTERS:
-        lines += [f"### {reg.name} (block {reg.offset:#04x}, {reg.access})", "", reg.text, "",
+        lines += [f"### {reg.name} (block {reg.offset:#04x}, {reg.access})", "", _text(reg), "",
                   "| bits | field | description |", "| --- | --- | --- |"]
         lines += [_field_row(item) for item in reg.fields]
         lines.append("")
@@ -129,8 +144,10 @@ def c_header(prefix="DDA", extra="", values=None):
         f"#define {prefix}_IO_BAR_SIZE {1 << IO_BAR_BITS}u",
         "",
     ]
-    for reg in REGISTERS:
+    for reg in ALL_BAR0:
         name = f"{prefix}_{reg.name}"
+        if reg.option is not None:
+            lines.append(f"/* {reg.name}: a build with {reg.option} only ({prefix}_BUILD_{reg.option.upper()}) */")
         lines.append(f"#define {name} 0x{reg.offset:02X}u")
         lines.append(f"#define {name}_RESET 0x{build_word(reg, values or {}):08X}u")
         for item in reg.fields:
@@ -155,14 +172,16 @@ def _axis_c_lines(prefix):
     offset inside the block, ``_OFFSET(axis)`` in BAR2, reset, fields, bounds."""
     name = f"{prefix}_AXIS"
     lines = ["/* Per-axis register blocks, BAR2 only: axis i (0 X, 1 Y, 2 Z, 3 A, 4 B, 5 C; BUILD.AXES of them)",
-             " * at BLOCK_BASE + STRIDE * i.  X's and Y's hold BAR0's registers (POS = POS_X / POS_Y, ...).",
+             " * at BLOCK_BASE + STRIDE * i.  X's and Y's hold BAR0's registers where BAR0 has them",
+             " * (POS = POS_X / POS_Y, ...); ENC_* and the rest are the blocks' only (builds with encoders).",
              " * A read of X's POS captures the other axes' POS: read it first. */",
              f"#define {name}_BLOCK_BASE 0x{AXIS_BLOCK_BASE:03X}u",
              f"#define {name}_STRIDE 0x{AXIS_STRIDE:02X}u",
              f"#define {name}_BLOCK(axis) ({name}_BLOCK_BASE + {name}_STRIDE * (unsigned)(axis))", ""]
     for reg in AXIS_REGISTERS:
         reg_name = f"{name}_{reg.name}"
-        lines += [f"#define {reg_name} 0x{reg.offset:02X}u /* inside the block */",
+        note = "" if reg.option is None else f"; a build with {reg.option} only"
+        lines += [f"#define {reg_name} 0x{reg.offset:02X}u /* inside the block{note} */",
                   f"#define {reg_name}_OFFSET(axis) ({name}_BLOCK(axis) + {reg_name})",
                   f"#define {reg_name}_RESET 0x{reg.reset:08X}u"]
         for item in reg.fields:

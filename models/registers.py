@@ -65,6 +65,9 @@ VERSIONS = (
     (0x0203, "the limit and home inputs of every axis (INPUT_POLARITY bits 7..18: LIMIT_POS_Z, LIMIT_NEG_Z, "
              "HOME_Z, then A, B, C's), INPUT_RAW and INPUT_ACTIVE (every input; MACHINE_STATUS keeps X's and "
              "Y's), STOP_REASON.LIMITS widened to bits 15:4; HOME.AXIS_INDEX homes any axis (docs/machine.md)"),
+    (0x0204, "encoder inputs on a build with encoders (build parameter encoders, BUILD.ENCODERS): per axis "
+             "ENC_COUNT .. PROBE_POS in the block, TIMESTAMP and PROBE_CONTROL, INT_STATUS.INDEX and PROBE, "
+             "STOP_REASON.REASON FOLLOWING_ERROR and STOP_REASON.AXIS (docs/encoders.md)"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock
@@ -100,6 +103,7 @@ class Register:
     minimum: int = None
     maximum: int = None
     set_index: int = None
+    option: str = None  # the build parameter (0 or 1) a card must be built with for the register to exist
 
     @property
     def width(self):
@@ -159,6 +163,8 @@ _INT_FIELDS = (
     Field("STOPPED", 5, 1, "the machine guard stopped the card (STOP_REASON says why)"),
     Field("INPUT", 6, 1, "a filtered machine input changed (INPUT_ACTIVE)"),
     Field("HOMED", 7, 1, "a HOME ended: done, not found or refused (HOME_STATUS says which)"),
+    Field("INDEX", 8, 1, "an armed encoder index latched ENC_INDEX_LATCH, on any axis (a build with encoders)"),
+    Field("PROBE", 9, 1, "the armed probe latched PROBE_ENC and PROBE_POS (a build with encoders)"),
 )
 
 # The machine inputs, bit n of INPUT_POLARITY, INPUT_RAW and INPUT_ACTIVE (MACHINE_STATUS's RAW and ACTIVE:
@@ -175,7 +181,7 @@ XY_INPUTS = 7   # the two-axis card's inputs, those MACHINE_STATUS's RAW and ACT
 INPUTS_PER_AXIS = 3   # LIMIT_POS, LIMIT_NEG, HOME of an axis from Z on
 # STOP_REASON.LIMITS bit n: LIMIT_NAMES[n], bit 2 * axis the axis's positive end, 2 * axis + 1 its negative
 LIMIT_NAMES = tuple(f"LIMIT_{end}_{name}" for name in AXIS_NAMES for end in ("POS", "NEG"))
-STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT")  # STOP_REASON.REASON codes
+STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT", "FOLLOWING_ERROR")  # STOP_REASON.REASON codes
 _REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
 WATCHDOG_BITS = 24
 HOME_SEARCH_BITS = 23  # a search fits a signed 24-bit direct-pulse count
@@ -266,6 +272,8 @@ REGISTERS = (
                "build parameter variants)", build="variants"), 0),
         (Field("DEVICE", 24, 4, f"FPGA family of the Verilog ({_DEVICE_CODES}; build parameter device)",
                build="device"), 0),
+        (Field("ENCODERS", 28, 1, "1: every axis has encoder inputs, the probe input and their registers "
+               "(build parameter encoders; docs/encoders.md)", build="encoders"), 0),
     )),
     Register("MACHINE_CONTROL", 0x60, "RW", 0, "the machine's outputs", (
         Field("DRIVE_ENABLE", 0, 1, "1: raise the DRIVE_ENABLE pin (a pulse under way keeps it high to its end); "
@@ -288,9 +296,11 @@ REGISTERS = (
     )),
     Register("STOP_REASON", 0x68, "RO", 0,
              "why the guard stops or stopped the card (0 when neither STOPPING nor STOPPED)", (
-        Field("REASON", 0, 2, f"{_REASON_CODES}"),
+        Field("REASON", 0, 3, f"{_REASON_CODES}"),
         Field("LIMITS", 4, len(LIMIT_NAMES), "LIMIT: the limits stepped towards (bit n: " + ", ".join(
             f"{bit} {name}" for bit, name in enumerate(LIMIT_NAMES)) + ")"),
+        Field("AXIS", 16, 3, "FOLLOWING_ERROR: the axis whose following error went beyond its FERROR_LIMIT "
+              "(0 X, 1 Y, ...; the lowest of several in the same clock)"),
     )),
     Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low (a card of "
              "fewer axes has the bits of its axes' inputs only: the others read 0, writes to them are ignored)",
@@ -351,12 +361,35 @@ REGISTERS = (
                    for bit, (name, text) in enumerate(_INPUT_TEXT))),
 )
 
+from models.encoder_model import (ERROR_COUNT_BITS, FILTER_BITS, FILTER_RESET, LIMIT_BITS,  # noqa: E402
+                                  POLARITY_BITS, SCALE_BITS, SCALE_MAX)
+
+_ENCODERS = "encoders"   # the build parameter the encoder registers need
+_FILTER_TEXT = ("a level is taken once seen FILTER + 1 clocks in a row (0..15; docs/encoders.md has the glitch "
+                "widths each rejects)")
+# Card-wide registers of a build with encoders, in BAR0 (a build without them reads 0 there, ignores writes).
+ENCODER_REGISTERS = (
+    Register("TIMESTAMP", 0xA4, "RO", 0, "the card's time stamp: clocks since reset (ENC_TIME is one of its values)",
+             _one("CLOCKS", 32, "counts every clock, wrapping"), option=_ENCODERS),
+    Register("PROBE_CONTROL", 0xA8, "WP", FILTER_RESET << 8,
+             "the probe input: arm it, its polarity and filter (a write sets every field: write the word "
+             "read back with the fields changed)", (
+                 Field("ARM", 0, 1, "write 1 to arm: the next probe edge latches every axis's PROBE_ENC and "
+                       "PROBE_POS once; reads 1 while armed"),
+                 Field("INVERT", 1, 1, "1: the probe input is active low"),
+                 Field("FILTER", 8, FILTER_BITS, f"the probe's filter: {_FILTER_TEXT}"),
+             ), option=_ENCODERS),
+)
+
 # The per-axis blocks, in BAR2 only (the I/O BAR0 keeps to PCI's 256 bytes): block i, for axis i,
 # at AXIS_BLOCK_BASE + AXIS_STRIDE * i; offsets below are inside the block, the axis's own
-# registers first, the rest of the block free for more (reads 0, writes ignored).
+# registers first, the rest of the block free for more (reads 0, writes ignored).  A block register
+# whose <REG>_X and <REG>_Y BAR0 has is BAR0's for X and Y; the others are the block's only, for every axis.
 REG_BAR_BITS = 12   # BAR2: 4 KiB, BAR0's registers at 0x000..0x0FF, then the blocks
 AXIS_BLOCK_BASE = 0x100
 AXIS_STRIDE = 0x40
+AXIS_FREE = (0x0C,)   # kept for the axis's homing registers (AXIS_HOME)
+_COUNT_TEXT = "counts, signed, wrapping modulo 2**32"
 AXIS_REGISTERS = (
     Register("POS", 0x00, "RO", 0, "the axis's position in steps: X's live, the others' as a read of X's "
              "(POS_X, in BAR0 or block 0) captured them, one instant for all",
@@ -366,46 +399,102 @@ AXIS_REGISTERS = (
     Register("PULSE_COUNT", 0x08, "WP", 0, "direct mode: write a signed count of the axis's pulses; read what is left",
              _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
                   signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
+    Register("ENC_COUNT", 0x10, "RO", 0, "the encoder's count (4x quadrature, or step/dir)",
+             _one("COUNT", 32, _COUNT_TEXT, signed=True), option=_ENCODERS),
+    Register("ENC_STATUS", 0x14, "WP", 0, "the encoder's errors and direction; write 1 to QUAD_ERROR to clear it "
+             "and ERROR_COUNT (W1C in effect)", (
+                 Field("QUAD_ERROR", 0, 1, "sticky: a sample where A and B both changed (not counted); write 1 "
+                       "clears it and ERROR_COUNT"),
+                 Field("DIRECTION", 1, 1, "1: the last count was up"),
+                 Field("ERROR_COUNT", 8, ERROR_COUNT_BITS, "illegal transitions since the last clear, saturating"),
+             ), option=_ENCODERS),
+    Register("ENC_CONTROL", 0x18, "WP", FILTER_RESET << 8,
+             "the encoder's mode, index, polarity and filter (a write sets every field: write the word read "
+             "back with the fields changed)", (
+                 Field("MODE", 0, 1, "0 quadrature (4x), 1 step/dir (A step, counted on its rising edge, B direction)"),
+                 Field("INDEX_ZERO", 1, 1, "1: the index edge that latches also zeroes ENC_COUNT (index-enable)"),
+                 Field("INDEX_ARM", 2, 1, "write 1 to arm: the next index edge latches ENC_COUNT into "
+                       "ENC_INDEX_LATCH once (INT_STATUS.INDEX); reads 1 while armed"),
+                 Field("POLARITY", 4, POLARITY_BITS, "bit 0 A, 1 B, 2 index: 1 inverts that input"),
+                 Field("FILTER", 8, FILTER_BITS, f"the A, B and index filter: {_FILTER_TEXT}"),
+             ), option=_ENCODERS),
+    Register("ENC_INDEX_LATCH", 0x1C, "RO", 0, "ENC_COUNT as it was at the last armed index edge",
+             _one("COUNT", 32, _COUNT_TEXT, signed=True), option=_ENCODERS),
+    Register("ENC_TIME", 0x20, "RO", 0, "TIMESTAMP at the last count edge (velocity: docs/encoders.md)",
+             _one("CLOCKS", 32, "the time stamp, clocks"), option=_ENCODERS),
+    Register("ENC_SCALE", 0x24, "WP", 0, "encoder counts per step, unsigned 16.16; a write re-aligns the "
+             "following error (reads the value written)",
+             _one("SCALE", SCALE_BITS, "counts per step times 65536 (0: the step position is taken as 0)"),
+             minimum=0, maximum=SCALE_MAX, option=_ENCODERS),
+    Register("FERROR_LIMIT", 0x28, "RW", 0, "following-error limit: |ENC_FERROR| beyond it stops the card "
+             "(STOP_REASON FOLLOWING_ERROR)", _one("COUNTS", LIMIT_BITS, "counts (0: off)"),
+             minimum=0, maximum=(1 << LIMIT_BITS) - 1, option=_ENCODERS),
+    Register("ENC_FERROR", 0x2C, "RO", 0, "the following error: ENC_COUNT - round(POS * ENC_SCALE), both "
+             "from their last alignment (docs/encoders.md)", _one("COUNTS", 32, "counts, signed", signed=True),
+             option=_ENCODERS),
+    Register("PROBE_ENC", 0x30, "RO", 0, "ENC_COUNT at the last armed probe edge (PROBE_CONTROL)",
+             _one("COUNT", 32, _COUNT_TEXT, signed=True), option=_ENCODERS),
+    Register("PROBE_POS", 0x34, "RO", 0, "the axis's step position (POS) at the last armed probe edge",
+             _one("STEPS", 32, "steps, signed", signed=True), option=_ENCODERS),
 )
 
-IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS) + WORD_BYTES - 1).bit_length())
+IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS + ENCODER_REGISTERS) + WORD_BYTES - 1).bit_length())
 SET_TARGETS = {r.set_index: r for r in REGISTERS if r.set_index is not None}
-_BY_NAME = {r.name: r for r in REGISTERS}
+_BY_NAME = {r.name: r for r in REGISTERS + ENCODER_REGISTERS}
 _AXIS_BY_NAME = {r.name: r for r in AXIS_REGISTERS}
 
 
-def _axis_spec(name):
+def present(reg, values):
+    """Whether a card built with ``values`` ({build parameter: value}; the defaults for the rest) has ``reg``."""
+    return reg.option is None or bool(values.get(reg.option, parameters.PARAMETERS[reg.option].default))
+
+
+def bar0_registers(values=None):
+    """BAR0's registers of a card built with ``values`` (default: the default build), by offset."""
+    return tuple(sorted((r for r in REGISTERS + ENCODER_REGISTERS if present(r, values or {})),
+                        key=lambda r: r.offset))
+
+
+def axis_spec(name):
+    """The block register ``name`` (POS, ENC_COUNT, ...) as the block describes it (offset inside the block)."""
     try:
         return _AXIS_BY_NAME[name]
     except KeyError:
         raise ValueError(f"no per-axis register {name}") from None
 
 
+def in_bar0(name):
+    """Whether the block register ``name`` is BAR0's for X and Y (BAR0 has <name>_X)."""
+    return f"{axis_spec(name).name}_{AXIS_NAMES[0]}" in _BY_NAME
+
+
 def axis_offset(name, axis):
     """Byte offset in BAR2 of the per-axis register ``name`` (POS, ...) of axis ``axis`` (0: X)."""
     if not 0 <= axis < len(AXIS_NAMES):
         raise ValueError(f"axis {axis} is not 0..{len(AXIS_NAMES) - 1}")
-    return AXIS_BLOCK_BASE + AXIS_STRIDE * axis + _axis_spec(name).offset
+    return AXIS_BLOCK_BASE + AXIS_STRIDE * axis + axis_spec(name).offset
 
 
 def axis_register(name, axis):
     """The per-axis register ``name`` of axis ``axis``: for X and Y BAR0's own
-    (POS_X, ...), else one named POS_Z, ... at its BAR2 offset."""
-    full = f"{_axis_spec(name).name}_{AXIS_NAMES[axis]}"
-    if axis < BAR0_AXES:
+    (POS_X, ...) where BAR0 has it, else one named POS_Z, ENC_COUNT_X, ... at its BAR2 offset."""
+    full = f"{axis_spec(name).name}_{AXIS_NAMES[axis]}"
+    if axis < BAR0_AXES and in_bar0(name):
         return register(full)
-    return replace(_axis_spec(name), name=full, offset=axis_offset(name, axis))
+    return replace(axis_spec(name), name=full, offset=axis_offset(name, axis))
 
 
-def axis_registers(axes):
-    """The registers a card of ``axes`` axes has in BAR2's blocks only (those of Z, A, ...), by offset."""
-    return tuple(axis_register(spec.name, axis) for axis in range(BAR0_AXES, axes) for spec in AXIS_REGISTERS)
+def axis_registers(axes, values=None):
+    """The registers a card of ``axes`` axes built with ``values`` (build parameters; default: the
+    defaults) has in BAR2's blocks only (not BAR0's), by offset."""
+    return tuple(axis_register(spec.name, axis) for axis in range(axes) for spec in AXIS_REGISTERS
+                 if present(spec, values or {}) and not (axis < BAR0_AXES and in_bar0(spec.name)))
 
 
 def axis_aliases():
-    """{BAR2 offset: BAR0 offset} of X's and Y's block registers, which are BAR0's."""
+    """{BAR2 offset: BAR0 offset} of X's and Y's block registers that are BAR0's."""
     return {axis_offset(spec.name, axis): axis_register(spec.name, axis).offset
-            for axis in range(BAR0_AXES) for spec in AXIS_REGISTERS}
+            for axis in range(BAR0_AXES) for spec in AXIS_REGISTERS if in_bar0(spec.name)}
 
 
 _INPUT_REGISTERS = ("INPUT_POLARITY", "INPUT_RAW", "INPUT_ACTIVE")
@@ -443,7 +532,7 @@ def built_register(reg, axes):
 
 
 def register(name):
-    """The register called ``name``."""
+    """The BAR0 register called ``name`` (of every build, or of those with encoders)."""
     try:
         return _BY_NAME[name]
     except KeyError:

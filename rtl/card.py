@@ -45,7 +45,7 @@ def card(clock, reset, pci, pins, *, build=Build(), io_registers=False):
     return target, interior
 
 
-def card_ports(axes=Build.axes):
+def card_ports(axes=Build.axes, encoders=Build.encoders):
     """Fresh ports of ``card`` for conversion and benches: ``pins`` of ``axes`` axes (the build
     parameter; no other changes a port)."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(), pins=MotorPins(axes))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), pci=PciBus(), pins=MotorPins(axes, encoders))

@@ -41,7 +41,7 @@ def card_core(clock, reset, local, irq, pins, *, build=Build()):
     return combine_resets, registers, interpolator
 
 
-def card_core_ports(axes=Build.axes):
+def card_core_ports(axes=Build.axes, encoders=Build.encoders):
     """Fresh ports of ``card_core`` for conversion and benches: ``pins`` of ``axes`` axes."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(), irq=Signal(bool(0)),
-                pins=MotorPins(axes))
+                pins=MotorPins(axes, encoders))

@@ -53,15 +53,15 @@ PROG = "python -m rtl.top"
 # whose every parameter shapes its ports (dda_arc reads its build from its
 # DdaPort).
 Unit = namedtuple("Unit", "names port_names")
-_CARD = ("fifo_depth", "coord_width", "clock_hz", "variants", "device", "axes", *PCI_IDS)
+_CARD = ("fifo_depth", "coord_width", "clock_hz", "variants", "device", "axes", "encoders", *PCI_IDS)
 UNITS = {
     "dda_arc": Unit(("coord_width", "variants"), ("coord_width", "variants")),
     "pci_slave": Unit((*PCI_IDS, "io_bar_bits", "mem_bar_bits", "reg_bar_bits", "device"),
                       ("io_bar_bits", "mem_bar_bits", "reg_bar_bits")),
-    "regs_fifo": Unit(("fifo_depth", "clock_hz", "device", "coord_width", "variants", "axes"),
-                      ("coord_width", "variants", "axes")),
-    "card": Unit(_CARD, ("axes",)),
-    "top": Unit(_CARD, ("axes",)),
+    "regs_fifo": Unit(("fifo_depth", "clock_hz", "device", "coord_width", "variants", "axes", "encoders"),
+                      ("coord_width", "variants", "axes", "encoders")),
+    "card": Unit(_CARD, ("axes", "encoders")),
+    "top": Unit(_CARD, ("axes", "encoders")),
 }
 # Sub-packages of rtl/ that hold units below the tops (``unit_block`` finds a unit there too).
 SUB_PACKAGES = ("pci", "dda", "regs", "machine", "encoder")
@@ -296,6 +296,10 @@ def _parser():
                              "C headers in it (default: gen/)")
     for parameter in PARAMETERS.values():
         text = parameter.describe()
+        if parameter.flag:
+            parser.add_argument(parameter.option, action="store_const", const=1, default=None,
+                                help=text.replace("%", "%%"))
+            continue
         parser.add_argument(parameter.option, type=_argument_type(parameter), default=None,
                             metavar="VALUE" if parameter.choices is None else "{" + ",".join(parameter.choices) + "}",
                             help=text.replace("%", "%%"))

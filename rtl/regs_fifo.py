@@ -5,7 +5,8 @@ from models import registers as regmap
 from models.axes import AXIS_NAMES
 from models.dda_build import variants_choice
 from models.parameters import COORD_WIDTH, Build
-from rtl.interfaces import (AxesCommand, AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, FeedPort, FifoRead, Homing,
+from rtl.interfaces import (AxesCommand, AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, EncoderRegisters, FeedPort,
+                            FifoRead, Homing,
                             InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl,
                             RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords,
                             StepPositions, StepRequest, card_reset)
@@ -14,6 +15,7 @@ from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
 from rtl.regs.axis_block import axis_block
 from rtl.regs.direct_pulse import direct_pulse
+from rtl.regs.encoder_block import encoder_block, guard_ferror, realign_on
 from rtl.regs.feed_rate import feed_rate
 from rtl.regs.pulse_out import pulse_out
 from rtl.regs.pulse_source import pulse_source
@@ -83,13 +85,14 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     if (dda.coord_width, variants_choice(dda.variants)) != (build.coord_width, build.variants):
         raise ValueError(f"regs_fifo: dda is a {dda.coord_width}-bit DdaPort of the variants "
                          f"{variants_choice(dda.variants)}, the build says {build.coord_width} and {build.variants}")
-    if (pins.axes, steps.axes, axes_cmd.axes) != (build.axes,) * 3:
+    if (pins.axes, steps.axes, axes_cmd.axes, pins.encoders) != (build.axes,) * 3 + (build.encoders,):
         raise ValueError(f"regs_fifo: pins, steps and axes_cmd of {pins.axes}, {steps.axes} and {axes_cmd.axes} axes, "
-                         f"the build says {build.axes}")
+                         f"pins with encoders {pins.encoders}; the build says {build.axes} and {build.encoders}")
     fifo_depth, axes = build.fifo_depth, build.axes
-    # BAR0's registers, then those only the per-axis blocks of Z, A, ... have (models/registers.py)
-    # (the input registers with the bits of this build's inputs: ``built_register``)
-    specs = tuple(regmap.built_register(r, axes) for r in regmap.REGISTERS) + regmap.axis_registers(axes)
+    # BAR0's registers of the build (the input registers with the bits of its inputs: ``built_register``),
+    # then those only the per-axis blocks have (models/registers.py)
+    specs = (tuple(regmap.built_register(r, axes) for r in regmap.bar0_registers(build.as_dict()))
+             + regmap.axis_registers(axes, build.as_dict()))
     io_write, io_read, push = (Signal(bool(0)) for _ in range(3))
     # a register read: the word is taken at the edge after the request, answered ready in the next clock
     read_waited, read_word = Signal(bool(0)), Signal(intbv(0)[32:])
@@ -187,8 +190,16 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
                   search=values["HOME_SEARCH"], idle=home_idle, clear=core_clear, pulse_busy=pulse_busy,
                   outputs_active=out_active, zero=home_zero, taken=hw["HOME"], state=hw["HOME_STATUS"],
                   home=home_inputs)
-    units += [input_filter(clock, reset, conditioning), machine_guard(clock, reset, guard, requests, granted),
+    units += [input_filter(clock, reset, conditioning),
+              machine_guard(clock, reset, guard, requests, granted, ferror_axes=axes if build.encoders else 0),
               homing(clock, reset, home)]
+    index_fired, probe_fired = Signal(bool(0)), Signal(bool(0))
+    if build.encoders:   # the encoder inputs (docs/encoders.md); their realignment follows the positions' setting
+        encoders = EncoderRegisters(axes, {r.name: words[r.name] for r in specs if r.option == "encoders"},
+                                    positions=position, clear_stop=clear_stop, index_fired=index_fired,
+                                    probe_fired=probe_fired)
+        units += [encoder_block(clock, reset, pins, encoders), realign_on(clear_position, zero, encoders.realign),
+                  guard_ferror(encoders.ferror, guard.ferror)]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]
@@ -345,6 +356,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
                                        requests.dir(axis)))
     status = StatusWords(axes, busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
+                         index_fired=index_fired, probe_fired=probe_fired,
                          low_water=values["LOW_WATER"], int_status=values["INT_STATUS"],
                          int_enable=values["INT_ENABLE"], position_x=position.x, position_y=pos_y_snapshot,
                          status=hw["STATUS"], int_set=hw["INT_STATUS"], mark_tag=hw["MARK_TAG"],
@@ -367,11 +379,13 @@ def _axis_request(step, direction, out, request, request_dir):
     return merge
 
 
-def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes):
+def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes,
+                    encoders=Build.encoders):
     """Fresh ports of ``regs_fifo`` for conversion and benches: ``dda`` of
     ``coord_width`` bits (the card's range: the feed rate needs 14 at least) and ``variants``,
-    ``axes_cmd``, ``steps`` and ``pins`` of ``axes`` axes."""
+    ``axes_cmd``, ``steps`` and ``pins`` of ``axes`` axes, with encoder pins with ``encoders``."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), local=LocalBus(),
                 dda=DdaPort(COORD_WIDTH.check(coord_width), variants),
-                axes_cmd=AxesCommand(axes, COORD_WIDTH.check(coord_width)), steps=AxisPulses(axes), pins=MotorPins(axes),
+                axes_cmd=AxesCommand(axes, COORD_WIDTH.check(coord_width)), steps=AxisPulses(axes),
+                pins=MotorPins(axes, encoders),
                 irq=Signal(bool(0)), core_clear=Signal(bool(0)))

@@ -39,10 +39,10 @@ def top(clock, reset, pci_pins, motor, *, build=Build.for_unit("top")):
     return pads, core
 
 
-def top_ports(axes=Build.axes):
+def top_ports(axes=Build.axes, encoders=Build.encoders):
     """Fresh ports of ``top`` for conversion and benches: ``motor`` of ``axes`` axes (the build
     parameter; no other changes a port)."""
-    return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins(axes))
+    return dict(clock=Signal(bool(0)), reset=card_reset(), pci_pins=PciPins(), motor=MotorPins(axes, encoders))
 
 
 if __name__ == "__main__":

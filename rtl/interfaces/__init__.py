@@ -13,12 +13,12 @@ lines are 0 when asserted).
 """
 from rtl.interfaces.bundle import axis_suffixes, card_reset, named
 from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
-                                 TIMING_BITS, AxisBlock, CommandHeader, DirectPulseCommand, FeedPort, FifoRead, MarkPort,
-                                 MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
+                                 TIMING_BITS, ENCODER_PINS, AxisBlock, CommandHeader, DirectPulseCommand, FeedPort,
+                                 FifoRead, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
                                  SequencerControl, SetPort, StatusWords, StepPositions, StepRequest, machine_inputs)
 from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxesCommand, AxisPulses, DdaMove, DdaPlan, DdaPort,
                                 DdaRoot, DdaStep, LinearPort, SetupControl, SetupSequence, axis_index_bits)
-from rtl.interfaces.encoder import EncoderPins, EncoderPort, FollowingErrorPort, ProbePort, Timestamp
+from rtl.interfaces.encoder import EncoderPins, EncoderPort, EncoderRegisters, FollowingErrorPort, ProbePort, Timestamp
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBoundary, TargetBuffers, TargetControlNext,
                                 TargetDecode, TargetParity, TargetRequests, TargetState, TargetTransaction)
@@ -35,6 +35,6 @@ __all__ = [
     "SetPort",
     "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
     "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "machine_inputs",
-    "EncoderPins", "EncoderPort", "Timestamp",
+    "ENCODER_PINS", "EncoderPins", "EncoderPort", "EncoderRegisters", "Timestamp",
     "FollowingErrorPort", "ProbePort"
 ]

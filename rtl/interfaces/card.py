@@ -5,7 +5,7 @@ from models import instructions as isa
 from models import registers as regmap
 from models.axes import XY_MASK
 from models.dda_build import COORD_WIDTH
-from models.parameters import AXES
+from models.parameters import AXES, ENCODERS
 from rtl.interfaces.bundle import adopt, axis_suffixes
 from rtl.interfaces.dda import DdaPort
 
@@ -19,16 +19,28 @@ class MotorPins:
     machine's inputs of its axes, in the order of ``MACHINE_INPUTS`` (E-stop, X's
     and Y's limit and home switches, then ``limit_pos_z``, ``limit_neg_z``,
     ``home_z``, ... of every further axis: pin levels as wired, asynchronous;
-    ``rtl/machine/input_filter.py`` conditions them)."""
+    ``rtl/machine/input_filter.py`` conditions them); with ``encoders`` (the
+    build parameter) also every axis's encoder inputs ``enc_a_x``,
+    ``enc_b_x``, ``enc_index_x``, ``enc_a_y``, ... and the card's ``probe``
+    (levels as wired, asynchronous; ``rtl/regs/encoder_block.py``)."""
 
-    def __init__(self, axes=AXES.default):
-        self.axes = axes
+    def __init__(self, axes=AXES.default, encoders=ENCODERS.default):
+        self.axes, self.encoders = axes, encoders
         for suffix in axis_suffixes(axes):
             setattr(self, f"step_{suffix}", Signal(bool(0)))
             setattr(self, f"dir_{suffix}", Signal(bool(0)))
         self.drive_enable = Signal(bool(0))
         for name in machine_inputs(axes):
             setattr(self, name, Signal(bool(0)))
+        if encoders:
+            for suffix in axis_suffixes(axes):
+                for pin in ENCODER_PINS:
+                    setattr(self, f"{pin}_{suffix}", Signal(bool(0)))
+            self.probe = Signal(bool(0))
+
+    def encoder(self, axis, pin):
+        """Encoder pin ``pin`` (one of ``ENCODER_PINS``) of axis ``axis``."""
+        return getattr(self, f"{pin}_{axis_suffixes(self.axes)[axis]}")
 
     def step(self, axis):
         """The STEP pin of axis ``axis`` (0 X, 1 Y, ...)."""
@@ -42,6 +54,8 @@ class MotorPins:
         """The input pins, in the order of ``MACHINE_INPUTS``."""
         return [getattr(self, name) for name in machine_inputs(self.axes)]
 
+
+ENCODER_PINS = ("enc_a", "enc_b", "enc_index")   # an axis's encoder pins, with encoders
 
 # The machine's inputs of the largest build, bit n of INPUT_POLARITY, INPUT_RAW and INPUT_ACTIVE is input n.
 MACHINE_INPUTS = tuple(name.lower() for name in regmap.INPUT_NAMES)
@@ -325,7 +339,8 @@ class StatusWords:
     a step on its way, a move or a HOME under way), ``quadrant`` (the
     DDA's), ``error_code`` (the sequencer's), ``fifo_empty``, ``fifo_full``
     and ``fifo_level`` (words), ``clamped`` (one clock: a register write was
-    clamped), ``home_ended`` (one clock as a HOME ends), ``low_water``,
+    clamped), ``home_ended`` (one clock as a HOME ends), ``index_fired`` and
+    ``probe_fired`` (one clock as an index or the probe latched), ``low_water``,
     ``int_status`` and ``int_enable`` (the registers' values), ``position_x``
     (the live X count) and ``position_y`` (the Y count captured with the last
     POS_X read); the unit drives ``status`` (STATUS), ``int_set`` (the
@@ -342,7 +357,8 @@ class StatusWords:
         adopt(self, given, busy=Signal(bool(0)), quadrant=Signal(intbv(0)[2:]),
                error_code=Signal(intbv(0)[ERROR_BITS:]), fifo_empty=Signal(bool(1)), fifo_full=Signal(bool(0)),
                fifo_level=Signal(intbv(0)[regmap.register("STATUS").field("FIFO_LEVEL").width:]),
-               clamped=Signal(bool(0)), home_ended=Signal(bool(0)), low_water=word("LOW_WATER"),
+               clamped=Signal(bool(0)), home_ended=Signal(bool(0)), index_fired=Signal(bool(0)),
+               probe_fired=Signal(bool(0)), low_water=word("LOW_WATER"),
                int_status=word("INT_STATUS"), int_enable=word("INT_ENABLE"),
                position_x=Signal(modbv(0, **step_count)), position_y=Signal(modbv(0, **step_count)),
                status=word("STATUS"), int_set=word("INT_STATUS"), mark_tag=word("MARK_TAG"),

@@ -9,6 +9,7 @@ from models.encoder_model import (COUNT_BITS, ERROR_COUNT_BITS, FILTER_BITS, FIL
                                   POLARITY_BITS, SCALE_BITS)
 from models.parameters import AXES
 from rtl.interfaces.bundle import adopt, axis_suffixes
+from rtl.interfaces.card import StepPositions
 
 
 POS_LOW_BITS = 2   # POS modulo 4: enough to tell a step up from a step down, POS moving one step a clock
@@ -106,3 +107,27 @@ class ProbePort:
     def signals(self, prefix, axis):
         """Axis ``axis``'s signal ``prefix`` (``count``, ``pos``, ``latched_count``, ``latched_pos``)."""
         return getattr(self, f"{prefix}_{axis_suffixes(self.axes)[axis]}")
+
+
+class EncoderRegisters:
+    """The encoder registers' seam with the card (``rtl/regs/encoder_block.py``) for ``axes`` axes.
+
+    ``words``: {register name: ``RegisterWord``} holding TIMESTAMP,
+    PROBE_CONTROL and every axis's block registers (ENC_COUNT_X, ...,
+    PROBE_POS_X, ENC_COUNT_Y, ...); ``positions`` (``StepPositions``, the
+    live step counts).  The card drives ``realign`` (bit i: axis i's
+    position was set at the last edge: CLEAR_POSITION, or homing's zero)
+    and ``clear_stop`` (COMMAND.CLEAR_STOP, one clock); the unit drives the
+    words' ``hw``, ``ferror`` (bit i: axis i's following error is beyond
+    its limit, latched until ``clear_stop``), ``index_fired`` and
+    ``probe_fired`` (one clock each: INT_STATUS.INDEX and PROBE)."""
+
+    def __init__(self, axes, words, positions=None, **given):
+        self.axes, self.words = axes, words
+        self.positions = StepPositions(axes) if positions is None else positions
+        adopt(self, given, realign=Signal(intbv(0)[axes:]), clear_stop=Signal(bool(0)),
+              ferror=Signal(intbv(0)[axes:]), index_fired=Signal(bool(0)), probe_fired=Signal(bool(0)))
+
+    def word(self, name, axis=None):
+        """The ``RegisterWord`` of ``name`` (of axis ``axis``'s block when given)."""
+        return self.words[name if axis is None else f"{name}_{axis_suffixes(self.axes)[axis].upper()}"]

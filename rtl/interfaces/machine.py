@@ -2,6 +2,7 @@
 from myhdl import Signal, intbv
 
 from models import registers as regmap
+from models.axes import AXIS_NAMES
 from models.parameters import AXES
 from rtl.interfaces.bundle import adopt
 from rtl.interfaces.card import machine_inputs
@@ -37,12 +38,14 @@ class MachineGuard:
     WATCHDOG write) with ``watchdog_timeout`` (its value, clocks; 0: off),
     ``ramp`` (RAMP_STEP is not 0: a watchdog or limit stop decelerates),
     ``held`` (``FeedPort.held``, and no step on its way to the pins) and
-    ``pulsing`` (``PulseControl.pulsing``: a STEP pulse starts, or is high).
+    ``pulsing`` (``PulseControl.pulsing``: a STEP pulse starts, or is high)
+    and ``ferror`` (bit i: axis i's following error is beyond its limit,
+    ``EncoderRegisters.ferror``; a build with encoders).
     The guard drives ``halt`` (no new STEP edge, no command, no direct
     pulse: stopped, or the E-stop input active), ``stopping`` (a
     decelerated stop is under way: the feed rate pauses), ``stopped`` (the
-    latch), ``stop_event`` (one clock, as the latch sets), ``reason`` and
-    ``limits`` (STOP_REASON; ``limits`` has the card's axes' bits, two an axis),
+    latch), ``stop_event`` (one clock, as the latch sets), ``reason``,
+    ``limits`` and ``axis`` (STOP_REASON; ``limits`` has the card's axes' bits, two an axis),
     ``drive_enable`` (the pin, from a flip-flop)
     and ``watchdog_left`` (clocks before the watchdog expires)."""
 
@@ -57,6 +60,7 @@ class MachineGuard:
                stopped=Signal(bool(0)), stop_event=Signal(bool(0)),
                reason=Signal(intbv(0)[reason.field("REASON").width:]),
                limits=Signal(intbv(0)[2 * axes:]), drive_enable=Signal(bool(0)),
+               ferror=Signal(intbv(0)[len(AXIS_NAMES):]), axis=Signal(intbv(0)[reason.field("AXIS").width:]),
                watchdog_left=Signal(intbv(0)[watchdog.width:]))
 
 

@@ -1,26 +1,32 @@
 """The machine guard: E-stop latch, host watchdog, limit gates and drive enable."""
-from myhdl import ConcatSignal, Signal, always_comb, always_seq, block
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
 from models import registers as regmap
 from models.parameters import AXES
 from rtl.interfaces import INPUT_ESTOP, AxisPulses, MachineGuard, axis_suffixes, card_reset, named
 
-REASON_ESTOP, REASON_WATCHDOG, REASON_LIMIT = (regmap.STOP_REASONS.index(name)
-                                               for name in ("ESTOP", "WATCHDOG", "LIMIT"))
+REASON_ESTOP, REASON_WATCHDOG, REASON_LIMIT, REASON_FOLLOWING_ERROR = (
+    regmap.STOP_REASONS.index(name) for name in ("ESTOP", "WATCHDOG", "LIMIT", "FOLLOWING_ERROR"))
 
 
 @block
-def machine_guard(clock, reset, guard, request, granted):
+def machine_guard(clock, reset, guard, request, granted, *, ferror_axes=0):
     """Stops the card, in hardware, when the machine or the host says so.
 
     Ports (``rtl/interfaces/``): ``guard`` (``MachineGuard``); ``request``
     (``AxisPulses``: the step requests of the DDA and the direct pulses);
     ``granted`` (``AxisPulses``: those that may go to the pulse outputs).
+    Parameter: ``ferror_axes`` (the axes whose following error ``ferror``
+    carries, a build with encoders; 0: none, the cause is not built).
 
     Causes, each latching ``stopped`` at the edge after it (first one wins,
     in this order; ``reason`` and ``limits`` say which):
 
     1. ESTOP: the filtered E-stop input is active.
+    1a. FOLLOWING_ERROR: ``ferror`` is not 0 (bit i: axis i's following
+       error is beyond its limit; ``axis`` says which, the lowest).  It
+       latches at once, also during a decelerated stop: the motor no longer
+       follows, a ramp would not slow it.
     2. WATCHDOG: ``watchdog_left`` reaches 0.  A ``watchdog_load`` sets it
        to ``watchdog_timeout`` (0: off); it counts down by one every clock.
     3. LIMIT: a step request of any axis towards its active limit
@@ -76,7 +82,10 @@ def machine_guard(clock, reset, guard, request, granted):
     if not granted.axes == request.axes == guard.axes:
         raise ValueError(f"machine_guard: request has {request.axes} axes, granted {granted.axes}, "
                          f"guard {guard.axes}")
+    if not 0 <= ferror_axes <= len(guard.ferror):
+        raise ValueError(f"machine_guard: ferror_axes {ferror_axes} is not 0..{len(guard.ferror)}")
     estop, expired, passes = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    lagging, lagging_axis = Signal(bool(0)), Signal(intbv(0)[len(guard.axis):])
     hit_bits = [Signal(bool(0)) for _ in range(len(guard.limits))]   # STOP_REASON.LIMITS's order
     hits = ConcatSignal(*reversed(hit_bits))
     grants, checks = [], []
@@ -108,6 +117,11 @@ def machine_guard(clock, reset, guard, request, granted):
                 guard.stopping.next = 0
                 guard.reason.next = REASON_ESTOP
                 guard.limits.next = 0
+            elif lagging:
+                stopped = True
+                guard.reason.next = REASON_FOLLOWING_ERROR
+                guard.limits.next = 0
+                guard.axis.next = lagging_axis
             elif guard.stopping:
                 stopped = bool(guard.held)
             elif expired or hits != 0:
@@ -126,6 +140,7 @@ def machine_guard(clock, reset, guard, request, granted):
             stopped = False
             guard.reason.next = 0
             guard.limits.next = 0
+            guard.axis.next = 0
         guard.stopped.next = stopped
         # a pulse that starts or is high keeps the drives enabled to its end (the pin falls a clock later);
         # the request counts from the clock after a release only (MACHINE_CONTROL.DRIVE_ENABLE is cleared
@@ -140,7 +155,15 @@ def machine_guard(clock, reset, guard, request, granted):
         elif guard.watchdog_left != 0:
             guard.watchdog_left.next = guard.watchdog_left - 1
 
-    return grants, checks, causes, gate, latch, watchdog
+    # the lowest axis of each combination of following-error flags (a table: a ROM once converted)
+    lowest = tuple((flags & -flags).bit_length() - 1 if flags else 0 for flags in range(1 << ferror_axes))
+
+    @always_comb
+    def following():
+        lagging.next = guard.ferror[ferror_axes:] != 0
+        lagging_axis.next = lowest[int(guard.ferror[ferror_axes:])]
+
+    return grants, checks, causes, gate, latch, watchdog, *([following] if ferror_axes else [])
 
 
 @block

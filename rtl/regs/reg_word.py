@@ -134,7 +134,8 @@ def _limit(written, honoured, out_of_range, spec):
     checked = spec.minimum is not None or spec.maximum is not None
     low_bits, high_bits = low & ((1 << width) - 1), high & ((1 << width) - 1)
 
-    if not checked:
+    if not checked or (not spec.signed and (low, high, width) == (0, (1 << 32) - 1, 32)):
+        # no range, or one of every 32-bit word (ENC_SCALE, FERROR_LIMIT): nothing to clamp
         @always_comb
         def cut():
             honoured.next = written[width:]

@@ -26,8 +26,8 @@ def status_words(clock, reset, words, guard, conditioning, mark):
     STATUS.DONE is set the clock after ``busy`` falls and cleared while
     ``busy``; ``int_set`` raises an INT_STATUS bit for one clock per event
     (DONE as ``busy`` falls, LOW_WATER as the level drops below LOW_WATER,
-    ERROR as the error code leaves 0, MARK, CLAMPED, STOPPED, INPUT, HOMED
-    with their one-clock sources); the register word sets the bit at the next
+    ERROR as the error code leaves 0, MARK, CLAMPED, STOPPED, INPUT, HOMED,
+    INDEX, PROBE with their one-clock sources); the register word sets the bit at the next
     edge, and ``irq`` follows INT_STATUS & INT_ENABLE:
         clock        _/~\\_/~\\_/~\\_/~\\_/~\\_
         busy         ~~~~~~~\\_____________
@@ -47,11 +47,13 @@ def status_words(clock, reset, words, guard, conditioning, mark):
     int_done, int_low, int_error = (_bit("INT_STATUS", f) for f in ("DONE", "LOW_WATER", "ERROR"))
     int_mark, int_clamp, int_stopped = (_bit("INT_STATUS", f) for f in ("MARK", "CLAMPED", "STOPPED"))
     int_input, int_homed = _bit("INT_STATUS", "INPUT"), _bit("INT_STATUS", "HOMED")
+    int_index, int_probe = _bit("INT_STATUS", "INDEX"), _bit("INT_STATUS", "PROBE")
     raw_lsb, active_lsb = _bit("MACHINE_STATUS", "RAW"), _bit("MACHINE_STATUS", "ACTIVE")
     machine_stopped, machine_drive = _bit("MACHINE_STATUS", "STOPPED"), _bit("MACHINE_STATUS", "DRIVE_ENABLE")
     held_bit, stopping_bit = _bit("MACHINE_STATUS", "HELD"), _bit("MACHINE_STATUS", "STOPPING")
-    reason_lsb, limits_lsb = _bit("STOP_REASON", "REASON"), _bit("STOP_REASON", "LIMITS")
+    reason_lsb, limits_lsb, axis_lsb = (_bit("STOP_REASON", f) for f in ("REASON", "LIMITS", "AXIS"))
     inputs, reason_bits, limit_bits = regmap.XY_INPUTS, len(guard.reason), len(guard.limits)
+    axis_bits = len(guard.axis)
     status_bits, machine_bits, reason_word = len(words.status), len(words.machine_status), len(words.stop_reason)
     position_x, position_y = words.position_x, words.position_y
 
@@ -91,6 +93,8 @@ def status_words(clock, reset, words, guard, conditioning, mark):
         word[int_stopped] = guard.stop_event
         word[int_input] = conditioning.changed
         word[int_homed] = words.home_ended
+        word[int_index] = words.index_fired
+        word[int_probe] = words.probe_fired
         words.int_set.next = word
 
     @always_comb
@@ -110,6 +114,7 @@ def status_words(clock, reset, words, guard, conditioning, mark):
         why = intbv(0)[reason_word:]
         why[reason_lsb + reason_bits:reason_lsb] = guard.reason
         why[limits_lsb + limit_bits:limits_lsb] = guard.limits
+        why[axis_lsb + axis_bits:axis_lsb] = guard.axis
         words.stop_reason.next = why
         words.input_raw.next = conditioning.raw
         words.input_active.next = conditioning.active

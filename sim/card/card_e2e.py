@@ -26,7 +26,7 @@ from myhdl import always, block
 
 from models import registers as regmap
 from models.commands import command_words
-from models.parameters import AXES, CLOCK_HZ, PARAMETERS, Build
+from models.parameters import AXES, CLOCK_HZ, ENCODERS, PARAMETERS, Build
 from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, convert_unit
 from rtl.interfaces import MotorPins
@@ -49,15 +49,18 @@ INTA_LIMIT = 200000
 BAR_ROLES = {"io": 0, "mem": 1, "alias": 2}
 
 
-def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default, axes=AXES.default):
-    """``card.v`` for ``fifo_depth``, ``clock_hz`` (what CLOCK_HZ reports) and
-    ``axes``: ``gen/card.v`` for the defaults, else a conversion kept in
+def card_verilog(fifo_depth, clock_hz=CLOCK_HZ.default, axes=AXES.default, encoders=ENCODERS.default):
+    """``card.v`` for ``fifo_depth``, ``clock_hz`` (what CLOCK_HZ reports),
+    ``axes`` and ``encoders``: ``gen/card.v`` for the defaults, else a conversion kept in
     ``build/conv`` (``sim/backends/conversions.py``)."""
-    if fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default and axes == AXES.default:
+    if (fifo_depth == DEFAULT_FIFO and clock_hz == CLOCK_HZ.default and axes == AXES.default
+            and encoders == ENCODERS.default):
         return GEN_DIR / "card.v"
     params = {"fifo_depth": fifo_depth, "clock_hz": clock_hz}
     if axes != AXES.default:
         params["axes"] = AXES.check(axes)
+    if encoders != ENCODERS.default:
+        params["encoders"] = ENCODERS.check(encoders)
     return converted("card", repr(params), functools.partial(convert_unit, "card", params))
 
 
@@ -74,10 +77,15 @@ class CardUnderTest:
     (the motor pins, MyHDL and Icarus).  Called
     with a ``PciBench``, it is that bench's target (MyHDL, Icarus)."""
 
-    def __init__(self, kind, fifo_depth, machine=None, axes=AXES.default):
+    def __init__(self, kind, fifo_depth, machine=None, axes=AXES.default, encoders=ENCODERS.default,
+                 pin_driver=None):
         if kind not in KINDS:
             raise ValueError(f"unknown card kind {kind!r}: use one of {', '.join(KINDS)}")
+        if kind == "icarus" and (encoders or pin_driver is not None):
+            raise ValueError("the Icarus card bench runs the top without encoders only")
         self.kind, self.fifo_depth, self.axes = kind, fifo_depth, AXES.check(axes)
+        # MyHDL: a card with encoders, and (block, *args): block(clock, reset, pins, *args) drives their pins
+        self.encoders, self.pin_driver = ENCODERS.check(encoders), pin_driver
         self.machine = machine   # a SimMachine on the input pins (MyHDL, Icarus; Verilator: in the harness)
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
         self.wait = CardWait(signal=kind != "verilator")
@@ -98,16 +106,20 @@ class CardUnderTest:
             def core(b):  # the X/Z report needs the bus model, which exists only later
                 return top_on_bus, (b.clock, b.reset, b.host.agent, harness, motor), {"segment": b.segment}
         else:
-            ports = card_ports(self.axes)
+            ports = card_ports(self.axes, self.encoders)
             ports["clock"], ports["reset"] = bench.clock, bench.reset
             agent, motor = ports["pci"], ports["pins"]
 
             def core(_):
-                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth, axes=self.axes))
+                return card, (), dict(ports, build=Build(fifo_depth=self.fifo_depth, axes=self.axes,
+                                                         encoders=self.encoders))
         self.pins = motor
         capture = (pin_capture, (bench.clock, motor, self.log))
         waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
         extra = [(machine_process, (bench.clock, motor, self.machine))] if self.machine is not None else []
+        if self.pin_driver is not None:
+            driver, *more = self.pin_driver
+            extra.append((driver, (bench.clock, bench.reset, motor, *more)))
         return agent, lambda b: [core(b), capture, (bus_record, (b, self.samples)), waiter, *extra]
 
 

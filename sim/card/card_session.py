@@ -63,7 +63,8 @@ class CardSession:
     offsets in memory space, as a host maps them where it has no port I/O);
     offsets beyond BAR0 (the per-axis register blocks) go through BAR2
     either way; ``axes``: the card's build (``--axes N``; the others of
-    ``Build`` as by default).
+    ``Build`` as by default); ``card_options``: more of ``CardUnderTest``'s
+    keywords (MyHDL: ``encoders``, ``pin_driver``).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by
@@ -72,13 +73,14 @@ class CardSession:
     """
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
-                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0, axes=AXES.default):
+                 monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0, axes=AXES.default,
+                 card_options=None):
         if register_bar not in REGISTER_BARS:
             raise ValueError(f"register_bar must be 0 (I/O) or 2 (memory), not {register_bar!r}")
         self.kind = kind
         self.register_bar = register_bar
         simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
-        self.target = CardUnderTest(kind, fifo_depth, machine=simulated, axes=axes)
+        self.target = CardUnderTest(kind, fifo_depth, machine=simulated, axes=axes, **(card_options or {}))
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":

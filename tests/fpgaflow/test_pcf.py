@@ -95,3 +95,18 @@ def test_lpf_matches_the_top_ports():
         pytest.skip("gen/top.v not written yet")
     ports, pinned = verilog_port_bits(top), set(ECP5.pins())
     assert ports == pinned, f"ports without a pin: {sorted(ports - pinned)}; pins without a port: {sorted(pinned - ports)}"
+
+
+# The encoder pins a top built with encoders has beyond gen/top.v's (rtl/interfaces/card.py: MotorPins)
+ENCODER_PORTS = {f"motor_enc_{pin}_{axis}" for pin in ("a", "b", "index") for axis in "xy"} | {"motor_probe"}
+
+
+@pytest.mark.parametrize("family", [ICE40, ECP5], ids=["ice40", "ecp5"])
+def test_a_top_with_encoders_gets_their_pins_added_on_balls_of_their_own(family, tmp_path):
+    base = family.pins()
+    assert family.top_constraints(set(base), tmp_path) == family.constraints
+    path = family.top_constraints(set(base) | ENCODER_PORTS, tmp_path)
+    pins = family.pins(path)
+    assert set(pins) == set(base) | ENCODER_PORTS
+    shared = [ball for ball, count in Counter(pins.values()).items() if count > 1]
+    assert not shared, f"balls used twice: {shared}"

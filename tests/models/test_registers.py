@@ -158,3 +158,53 @@ def test_a_block_register_that_does_not_fit_is_refused(change, message):
     bad = replace(regmap.AXIS_REGISTERS[1], **change)
     with pytest.raises(ValueError, match=message):
         regmap.check_axis_block((regmap.AXIS_REGISTERS[0], bad, regmap.AXIS_REGISTERS[2]))
+
+
+# The encoder registers as docs/encoders.md lays them out: in every axis's block after POS, PULSE_PERIOD,
+# PULSE_COUNT and the place kept for AXIS_HOME; written out, not computed from the table.
+ENCODER_BLOCK = {"ENC_COUNT": 0x10, "ENC_STATUS": 0x14, "ENC_CONTROL": 0x18, "ENC_INDEX_LATCH": 0x1C, "ENC_TIME": 0x20,
+                 "ENC_SCALE": 0x24, "FERROR_LIMIT": 0x28, "ENC_FERROR": 0x2C, "PROBE_ENC": 0x30, "PROBE_POS": 0x34}
+
+
+@pytest.mark.parametrize("axis", range(6))
+def test_encoder_registers_are_every_blocks_own_named_after_the_axis(axis):
+    suffix = "XYZABC"[axis]
+    for name, inside in ENCODER_BLOCK.items():
+        reg = regmap.axis_register(name, axis)
+        assert (reg.name, reg.offset, reg.option) == (f"{name}_{suffix}", 0x100 + 0x40 * axis + inside, "encoders")
+
+
+def test_encoder_registers_exist_only_on_a_build_with_encoders():
+    assert regmap.axis_registers(2) == ()
+    with_encoders = regmap.axis_registers(2, {"encoders": 1})
+    assert [r.name for r in with_encoders] == [f"{name}_{axis}" for axis in "XY" for name in ENCODER_BLOCK]
+    assert len(regmap.axis_registers(3, {"encoders": 1})) == 3 + 3 * len(ENCODER_BLOCK)
+    # X's and Y's block-only registers get no alias: BAR0 has no ENC_COUNT_X
+    assert regmap.axis_aliases() == {0x100: 0x20, 0x104: 0x44, 0x108: 0x4C, 0x140: 0x24, 0x144: 0x48, 0x148: 0x50}
+    assert [r.name for r in regmap.bar0_registers({"encoders": 1})][-2:] == ["TIMESTAMP", "PROBE_CONTROL"]
+    assert "TIMESTAMP" not in [r.name for r in regmap.bar0_registers()]
+    assert (regmap.offset("TIMESTAMP"), regmap.offset("PROBE_CONTROL"), 1 << regmap.IO_BAR_BITS) == (0x9C, 0xA0, 256)
+    assert regmap.field_value("BUILD", "ENCODERS", regmap.build_word(regmap.register("BUILD"), {"encoders": 1})) == 1
+
+
+def test_stop_reason_names_the_following_error_and_its_axis_clear_of_the_limits():
+    reason = regmap.register("STOP_REASON")
+    assert regmap.STOP_REASONS.index("FOLLOWING_ERROR") == 4
+    assert (reason.field("AXIS").lsb, reason.field("AXIS").width) == (16, 3)
+    # bits 8..15 stay free for STOP_REASON.LIMITS to grow into
+    assert all(not item.mask & 0xFF00 for item in reason.fields)
+    assert regmap.field_value("STOP_REASON", "REASON", regmap.field_of("STOP_REASON", REASON=4, AXIS=1)) == 4
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(offset=0x0C), "kept free"),
+    (dict(name="POS_Q", offset=0x38), None),   # a block-only register BAR0 lacks: allowed
+])
+def test_a_block_only_register_is_allowed_but_not_on_the_free_place(change, message):
+    spec = replace(regmap.axis_spec("ENC_COUNT"), **change)
+    if message is None:
+        regmap.check_axis_block(regmap.AXIS_REGISTERS + (spec,))
+        return
+    with pytest.raises(ValueError, match=message):
+        regmap.check_axis_block(regmap.AXIS_REGISTERS[:3] + (spec,))
+

@@ -37,6 +37,7 @@ RANGES = {
     "--reg-bar-bits": ("4..16", ["4", "16"]),
     "--device": ("generic or ice40", ["generic", "ice40"]),
     "--variants": ("improved,precise or all", ["improved,precise", "all"]),
+    "--encoders": ("0..1", ["0", "1"]),   # a bare option on the command line (issue 27)
 }
 
 # option -> values outside the range (edges on both sides, wrong types)
@@ -56,6 +57,7 @@ BAD_VALUES = {
     "--reg-bar-bits": ["3", "17"],
     "--device": ["xilinx", "ICE40", "", "ecp5"],
     "--variants": ["precise", "improved", "precise,improved", "ALL", "all,precise"],
+    "--encoders": ["1", "0", "2", "yes"],   # bare: a value after it is refused
 }
 ICE40_BLOCK_RAM_WORDS = 32 * 4096 // 32   # iCE40 HX8K: 32 blocks of 4 Kbit
 
@@ -119,6 +121,13 @@ def test_values_at_the_range_edges_are_taken(option):
         values = {name: value, "device": "generic"} if name == "fifo_depth" else {name: value}
         builds = unit_builds(values)
         assert all(getattr(builds[unit], name) == value for unit in UNITS if name in UNITS[unit].names)
+
+
+def test_bare_encoders_option_builds_the_card_and_top_with_encoders():
+    args = convert._parser().parse_args(["--convert", "--encoders"])
+    assert args.encoders == 1 and convert._parser().parse_args(["--convert"]).encoders is None
+    builds = unit_builds({"encoders": args.encoders})
+    assert [unit for unit in UNITS if getattr(builds[unit], "encoders")] == ["regs_fifo", "card", "top"]
 
 
 def test_fifo_deeper_than_the_ice40_block_ram_is_refused_for_ice40(capsys, tmp_path):
