@@ -198,7 +198,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         encoders = EncoderRegisters(axes, {r.name: words[r.name] for r in specs if r.option == "encoders"},
                                     positions=position, clear_stop=clear_stop, index_fired=index_fired,
                                     probe_fired=probe_fired)
-        units += [encoder_block(clock, reset, pins, encoders), realign_on(clear_position, zero, encoders.realign),
+        units += [encoder_block(clock, reset, pins, encoders), realign_on(clear_position, home_zero, encoders.realign),
                   guard_ferror(encoders.ferror, guard.ferror)]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped

@@ -183,7 +183,7 @@ def test_encoder_registers_exist_only_on_a_build_with_encoders():
     assert regmap.axis_aliases() == {0x100: 0x20, 0x104: 0x44, 0x108: 0x4C, 0x140: 0x24, 0x144: 0x48, 0x148: 0x50}
     assert [r.name for r in regmap.bar0_registers({"encoders": 1})][-2:] == ["TIMESTAMP", "PROBE_CONTROL"]
     assert "TIMESTAMP" not in [r.name for r in regmap.bar0_registers()]
-    assert (regmap.offset("TIMESTAMP"), regmap.offset("PROBE_CONTROL"), 1 << regmap.IO_BAR_BITS) == (0x9C, 0xA0, 256)
+    assert (regmap.offset("TIMESTAMP"), regmap.offset("PROBE_CONTROL"), 1 << regmap.IO_BAR_BITS) == (0xA4, 0xA8, 256)
     assert regmap.field_value("BUILD", "ENCODERS", regmap.build_word(regmap.register("BUILD"), {"encoders": 1})) == 1
 
 
@@ -191,8 +191,9 @@ def test_stop_reason_names_the_following_error_and_its_axis_clear_of_the_limits(
     reason = regmap.register("STOP_REASON")
     assert regmap.STOP_REASONS.index("FOLLOWING_ERROR") == 4
     assert (reason.field("AXIS").lsb, reason.field("AXIS").width) == (16, 3)
-    # bits 8..15 stay free for STOP_REASON.LIMITS to grow into
-    assert all(not item.mask & 0xFF00 for item in reason.fields)
+    # LIMITS has bits 15:4 (two per axis of the largest build), AXIS lies above it
+    assert (reason.field("LIMITS").lsb, reason.field("LIMITS").width) == (4, 12)
+    assert not reason.field("AXIS").mask & reason.field("LIMITS").mask
     assert regmap.field_value("STOP_REASON", "REASON", regmap.field_of("STOP_REASON", REASON=4, AXIS=1)) == 4
 
 
