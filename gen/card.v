@@ -814,6 +814,7 @@ wire [23:0] card_core0_regs_fifo1_direct_pulse2_counted;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap;
 wire [15:0] card_core0_regs_fifo1_direct_pulse2_gap_less;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_gap_operand;
+wire card_core0_regs_fifo1_direct_pulse2_may_step;
 reg card_core0_regs_fifo1_direct_pulse2_pending;
 wire card_core0_regs_fifo1_direct_pulse2_stepping;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
@@ -828,6 +829,7 @@ wire [23:0] card_core0_regs_fifo1_direct_pulse3_counted;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap;
 wire [15:0] card_core0_regs_fifo1_direct_pulse3_gap_less;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_gap_operand;
+wire card_core0_regs_fifo1_direct_pulse3_may_step;
 reg card_core0_regs_fifo1_direct_pulse3_pending;
 wire card_core0_regs_fifo1_direct_pulse3_stepping;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
@@ -919,6 +921,7 @@ reg [2:0] card_core0_regs_fifo1_homing1_asked;
 reg [2:0] card_core0_regs_fifo1_homing1_axis;
 reg card_core0_regs_fifo1_homing1_done;
 reg card_core0_regs_fifo1_homing1_finished;
+reg [2:0] card_core0_regs_fifo1_homing1_following;
 reg card_core0_regs_fifo1_homing1_gave_up;
 reg [23:0] card_core0_regs_fifo1_homing1_magnitude;
 reg card_core0_regs_fifo1_homing1_negative;
@@ -928,6 +931,7 @@ reg [23:0] card_core0_regs_fifo1_homing1_operand;
 reg [1:0] card_core0_regs_fifo1_homing1_phase;
 reg card_core0_regs_fifo1_homing1_positive;
 reg card_core0_regs_fifo1_homing1_refused;
+reg card_core0_regs_fifo1_homing1_releasing;
 reg card_core0_regs_fifo1_homing1_seek_next;
 reg card_core0_regs_fifo1_homing1_seeking;
 wire [23:0] card_core0_regs_fifo1_homing1_signed_count;
@@ -936,11 +940,11 @@ reg [2:0] card_core0_regs_fifo1_homing1_state;
 reg card_core0_regs_fifo1_homing1_switch;
 reg card_core0_regs_fifo1_homing1_valid;
 wire [1:0] card_core0_regs_fifo1_homing1_port_home;
-reg card_core0_regs_fifo1_homing1_port_load;
 reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
+reg card_core0_regs_fifo1_homing1_port_load;
 wire [1:0] card_core0_regs_fifo1_pulse_source2_pulses_mask;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
@@ -5393,10 +5397,11 @@ assign card_core0_regs_fifo1_direct_pulse2_command_busy = (card_core0_regs_fifo1
 
 
 
-assign card_core0_regs_fifo1_direct_pulse2_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse2_command_retarget && (card_core0_regs_fifo1_direct_pulse2_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse2_command_retarget) && card_core0_regs_fifo1_direct_pulse2_pending)));
+assign card_core0_regs_fifo1_direct_pulse2_may_step = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready && (card_core0_regs_fifo1_direct_pulse2_command_retarget || card_core0_regs_fifo1_direct_pulse2_pending));
+assign card_core0_regs_fifo1_direct_pulse2_stepping = (card_core0_regs_fifo1_direct_pulse2_may_step && (!(card_core0_regs_fifo1_direct_pulse2_command_retarget && (card_core0_regs_fifo1_direct_pulse2_command_count == 0))));
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word60_shown, card_core0_regs_fifo1_direct_pulse2_stepping, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word60_shown, card_core0_regs_fifo1_direct_pulse2_may_step, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_command_retarget))) begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word60_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
@@ -5404,14 +5409,14 @@ always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_f
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = (~card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0]);
         card_core0_regs_fifo1_direct_pulse2_count_addend = 1;
-        if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
+        if (card_core0_regs_fifo1_direct_pulse2_may_step) begin
             card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
         end
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0];
         card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
-        if (card_core0_regs_fifo1_direct_pulse2_stepping) begin
+        if (card_core0_regs_fifo1_direct_pulse2_may_step) begin
             card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
         end
     end
@@ -5469,8 +5474,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         end
         else begin
             if (card_core0_regs_fifo1_direct_pulse2_command_retarget) begin
-                card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
                 card_core0_regs_fifo1_direct_pulse2_pending <= (card_core0_regs_fifo1_direct_pulse2_command_count != 0);
+                if ((card_core0_regs_fifo1_direct_pulse2_command_count != 0)) begin
+                    card_core0_regs_fifo1_reg_word60_shown <= card_core0_regs_fifo1_direct_pulse2_counted;
+                end
+                else begin
+                    card_core0_regs_fifo1_reg_word60_shown <= 0;
+                end
             end
             if (card_core0_regs_fifo1_direct_pulse2_waiting) begin
                 card_core0_regs_fifo1_direct_pulse2_gap <= card_core0_regs_fifo1_direct_pulse2_gap_less;
@@ -5486,10 +5496,11 @@ assign card_core0_regs_fifo1_direct_pulse3_command_busy = (card_core0_regs_fifo1
 
 
 
-assign card_core0_regs_fifo1_direct_pulse3_stepping = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready && ((card_core0_regs_fifo1_direct_pulse3_command_retarget && (card_core0_regs_fifo1_direct_pulse3_command_count != 0)) || ((!card_core0_regs_fifo1_direct_pulse3_command_retarget) && card_core0_regs_fifo1_direct_pulse3_pending)));
+assign card_core0_regs_fifo1_direct_pulse3_may_step = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready && (card_core0_regs_fifo1_direct_pulse3_command_retarget || card_core0_regs_fifo1_direct_pulse3_pending));
+assign card_core0_regs_fifo1_direct_pulse3_stepping = (card_core0_regs_fifo1_direct_pulse3_may_step && (!(card_core0_regs_fifo1_direct_pulse3_command_retarget && (card_core0_regs_fifo1_direct_pulse3_command_count == 0))));
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word61_shown, card_core0_regs_fifo1_direct_pulse3_stepping, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word61_shown, card_core0_regs_fifo1_direct_pulse3_may_step, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_command_retarget))) begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word61_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
@@ -5497,14 +5508,14 @@ always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_f
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = (~card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0]);
         card_core0_regs_fifo1_direct_pulse3_count_addend = 1;
-        if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
+        if (card_core0_regs_fifo1_direct_pulse3_may_step) begin
             card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
         end
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0];
         card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
-        if (card_core0_regs_fifo1_direct_pulse3_stepping) begin
+        if (card_core0_regs_fifo1_direct_pulse3_may_step) begin
             card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
         end
     end
@@ -5562,8 +5573,13 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_direct_pulse
         end
         else begin
             if (card_core0_regs_fifo1_direct_pulse3_command_retarget) begin
-                card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
                 card_core0_regs_fifo1_direct_pulse3_pending <= (card_core0_regs_fifo1_direct_pulse3_command_count != 0);
+                if ((card_core0_regs_fifo1_direct_pulse3_command_count != 0)) begin
+                    card_core0_regs_fifo1_reg_word61_shown <= card_core0_regs_fifo1_direct_pulse3_counted;
+                end
+                else begin
+                    card_core0_regs_fifo1_reg_word61_shown <= 0;
+                end
             end
             if (card_core0_regs_fifo1_direct_pulse3_waiting) begin
                 card_core0_regs_fifo1_direct_pulse3_gap <= card_core0_regs_fifo1_direct_pulse3_gap_less;
@@ -6258,8 +6274,6 @@ always @(card_core0_regs_fifo1_reg_word72__store49_word_value, card_core0_regs_f
     else begin
         card_core0_regs_fifo1_homing1_positive = card_core0_regs_fifo1_homing1_negative;
     end
-    card_core0_regs_fifo1_home_busy = (card_core0_regs_fifo1_homing1_state != 3'b000);
-    card_core0_regs_fifo1_homing1_port_load = ((card_core0_regs_fifo1_homing1_state == 3'b001) || (card_core0_regs_fifo1_homing1_state == 3'b011));
 end
 
 
@@ -6296,12 +6310,12 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_next
 end
 
 
-always @(card_core0_regs_fifo1_homing1_slot, card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
+always @(card_core0_regs_fifo1_homing1_releasing, card_core0_regs_fifo1_homing1_slot, card_core0_regs_fifo1_out_active, card_core0_regs_fifo1_pulse_busy, card_core0_regs_fifo1_homing1_axis, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_edges
     reg drained;
     reg released;
     reg [2-1:0] zero;
     drained = ((!card_core0_regs_fifo1_pulse_busy) && (!card_core0_regs_fifo1_out_active));
-    released = ((card_core0_regs_fifo1_homing1_state == 3'b100) && (!card_core0_regs_fifo1_homing1_switch));
+    released = (card_core0_regs_fifo1_homing1_releasing && (!card_core0_regs_fifo1_homing1_switch));
     card_core0_regs_fifo1_homing1_opened = released;
     card_core0_regs_fifo1_homing1_gave_up = (drained && (((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)) || ((card_core0_regs_fifo1_homing1_state == 3'b100) && card_core0_regs_fifo1_homing1_switch)));
     card_core0_regs_fifo1_homing1_finished = ((card_core0_regs_fifo1_homing1_state == 3'b110) && (!card_core0_regs_fifo1_out_active));
@@ -6396,45 +6410,57 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_outc
 end
 
 
+always @(card_core0_regs_fifo1_home_idle, card_core0_regs_fifo1_reg_word72__store49_word_strobe, card_core0_regs_fifo1_reg_word76_shown, card_core0_regs_fifo1_homing1_opened, card_core0_regs_fifo1_homing1_gave_up, card_core0_regs_fifo1_homing1_valid, card_core0_regs_fifo1_homing1_finished, card_core0_regs_fifo1_pulse_busy, card_core0_core_clear, card_core0_regs_fifo1_homing1_switch, card_core0_regs_fifo1_homing1_state) begin: card_core0_regs_fifo1_homing1_transition
+    card_core0_regs_fifo1_homing1_following = card_core0_regs_fifo1_homing1_state;
+    if ((card_core0_core_clear || card_core0_regs_fifo1_homing1_gave_up || card_core0_regs_fifo1_homing1_finished)) begin
+        card_core0_regs_fifo1_homing1_following = 3'b000;
+    end
+    else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
+        if ((card_core0_regs_fifo1_reg_word72__store49_word_strobe && card_core0_regs_fifo1_home_idle && card_core0_regs_fifo1_homing1_valid)) begin
+            card_core0_regs_fifo1_homing1_following = 3'b001;
+        end
+    end
+    else if ((card_core0_regs_fifo1_homing1_state == 3'b001)) begin
+        card_core0_regs_fifo1_homing1_following = 3'b010;
+    end
+    else if ((card_core0_regs_fifo1_homing1_state == 3'b010)) begin
+        if (card_core0_regs_fifo1_homing1_switch) begin
+            card_core0_regs_fifo1_homing1_following = 3'b011;
+        end
+    end
+    else if ((card_core0_regs_fifo1_homing1_state == 3'b011)) begin
+        card_core0_regs_fifo1_homing1_following = 3'b100;
+    end
+    else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
+        if (card_core0_regs_fifo1_homing1_opened) begin
+            if ((card_core0_regs_fifo1_reg_word76_shown != 0)) begin
+                card_core0_regs_fifo1_homing1_following = 3'b101;
+            end
+            else begin
+                card_core0_regs_fifo1_homing1_following = 3'b110;
+            end
+        end
+    end
+    else if ((card_core0_regs_fifo1_homing1_state == 3'b101)) begin
+        if ((!card_core0_regs_fifo1_pulse_busy)) begin
+            card_core0_regs_fifo1_homing1_following = 3'b110;
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_homing1_sequence
     if (reset == 0) begin
+        card_core0_regs_fifo1_homing1_port_load <= 0;
+        card_core0_regs_fifo1_homing1_releasing <= 0;
+        card_core0_regs_fifo1_home_busy <= 0;
         card_core0_regs_fifo1_homing1_state <= 3'b000;
     end
     else begin
-        if ((card_core0_core_clear || card_core0_regs_fifo1_homing1_gave_up || card_core0_regs_fifo1_homing1_finished)) begin
-            card_core0_regs_fifo1_homing1_state <= 3'b000;
-        end
-        else if ((card_core0_regs_fifo1_homing1_state == 3'b000)) begin
-            if ((card_core0_regs_fifo1_reg_word72__store49_word_strobe && card_core0_regs_fifo1_home_idle && card_core0_regs_fifo1_homing1_valid)) begin
-                card_core0_regs_fifo1_homing1_state <= 3'b001;
-            end
-        end
-        else if ((card_core0_regs_fifo1_homing1_state == 3'b001)) begin
-            card_core0_regs_fifo1_homing1_state <= 3'b010;
-        end
-        else if ((card_core0_regs_fifo1_homing1_state == 3'b010)) begin
-            if (card_core0_regs_fifo1_homing1_switch) begin
-                card_core0_regs_fifo1_homing1_state <= 3'b011;
-            end
-        end
-        else if ((card_core0_regs_fifo1_homing1_state == 3'b011)) begin
-            card_core0_regs_fifo1_homing1_state <= 3'b100;
-        end
-        else if ((card_core0_regs_fifo1_homing1_state == 3'b100)) begin
-            if (card_core0_regs_fifo1_homing1_opened) begin
-                if ((card_core0_regs_fifo1_reg_word76_shown != 0)) begin
-                    card_core0_regs_fifo1_homing1_state <= 3'b101;
-                end
-                else begin
-                    card_core0_regs_fifo1_homing1_state <= 3'b110;
-                end
-            end
-        end
-        else if ((card_core0_regs_fifo1_homing1_state == 3'b101)) begin
-            if ((!card_core0_regs_fifo1_pulse_busy)) begin
-                card_core0_regs_fifo1_homing1_state <= 3'b110;
-            end
-        end
+        card_core0_regs_fifo1_homing1_state <= card_core0_regs_fifo1_homing1_following;
+        card_core0_regs_fifo1_home_busy <= (card_core0_regs_fifo1_homing1_following != 3'b000);
+        card_core0_regs_fifo1_homing1_port_load <= ((card_core0_regs_fifo1_homing1_following == 3'b001) || (card_core0_regs_fifo1_homing1_following == 3'b011));
+        card_core0_regs_fifo1_homing1_releasing <= (card_core0_regs_fifo1_homing1_following == 3'b100);
     end
 end
 

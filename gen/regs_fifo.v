@@ -706,6 +706,7 @@ wire [23:0] direct_pulse0_counted;
 reg [15:0] direct_pulse0_gap;
 wire [15:0] direct_pulse0_gap_less;
 reg [15:0] direct_pulse0_gap_operand;
+wire direct_pulse0_may_step;
 reg direct_pulse0_pending;
 wire direct_pulse0_stepping;
 reg direct_pulse0_waiting;
@@ -720,6 +721,7 @@ wire [23:0] direct_pulse1_counted;
 reg [15:0] direct_pulse1_gap;
 wire [15:0] direct_pulse1_gap_less;
 reg [15:0] direct_pulse1_gap_operand;
+wire direct_pulse1_may_step;
 reg direct_pulse1_pending;
 wire direct_pulse1_stepping;
 reg direct_pulse1_waiting;
@@ -811,6 +813,7 @@ reg [2:0] homing0_asked;
 reg [2:0] homing0_axis;
 reg homing0_done;
 reg homing0_finished;
+reg [2:0] homing0_following;
 reg homing0_gave_up;
 reg [23:0] homing0_magnitude;
 reg homing0_negative;
@@ -820,6 +823,7 @@ reg [23:0] homing0_operand;
 reg [1:0] homing0_phase;
 reg homing0_positive;
 reg homing0_refused;
+reg homing0_releasing;
 reg homing0_seek_next;
 reg homing0_seeking;
 wire [23:0] homing0_signed_count;
@@ -828,11 +832,11 @@ reg [2:0] homing0_state;
 reg homing0_switch;
 reg homing0_valid;
 wire [1:0] homing0_port_home;
-reg homing0_port_load;
 reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
 reg homing0_port_retarget;
 reg homing0_port_ended;
+reg homing0_port_load;
 wire [1:0] pulse_source0_pulses_mask;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
@@ -3895,10 +3899,11 @@ assign direct_pulse0_command_busy = (direct_pulse0_command_load || direct_pulse0
 
 
 
-assign direct_pulse0_stepping = ((!direct_clear) && (!direct_pulse0_command_load) && (!direct_pulse0_waiting) && direct_ready && ((direct_pulse0_command_retarget && (direct_pulse0_command_count != 0)) || ((!direct_pulse0_command_retarget) && direct_pulse0_pending)));
+assign direct_pulse0_may_step = ((!direct_clear) && (!direct_pulse0_command_load) && (!direct_pulse0_waiting) && direct_ready && (direct_pulse0_command_retarget || direct_pulse0_pending));
+assign direct_pulse0_stepping = (direct_pulse0_may_step && (!(direct_pulse0_command_retarget && (direct_pulse0_command_count == 0))));
 
 
-always @(direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_stepping, direct_pulse0_command_load, direct_pulse0_command_count) begin: direct_pulse0_count_operands
+always @(direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_may_step, direct_pulse0_command_load, direct_pulse0_command_count) begin: direct_pulse0_count_operands
     if (((!direct_pulse0_command_load) && (!direct_pulse0_command_retarget))) begin
         direct_pulse0_count_operand = reg_word19_shown;
         direct_pulse0_count_addend = 16777215;
@@ -3906,14 +3911,14 @@ always @(direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_steppin
     else if ((direct_pulse0_command_count < 0)) begin
         direct_pulse0_count_operand = (~direct_pulse0_command_count[24-1:0]);
         direct_pulse0_count_addend = 1;
-        if (direct_pulse0_stepping) begin
+        if (direct_pulse0_may_step) begin
             direct_pulse0_count_addend = 0;
         end
     end
     else begin
         direct_pulse0_count_operand = direct_pulse0_command_count[24-1:0];
         direct_pulse0_count_addend = 0;
-        if (direct_pulse0_stepping) begin
+        if (direct_pulse0_may_step) begin
             direct_pulse0_count_addend = 16777215;
         end
     end
@@ -3971,8 +3976,13 @@ always @(posedge clock, negedge reset) begin: direct_pulse0_emit
         end
         else begin
             if (direct_pulse0_command_retarget) begin
-                reg_word19_shown <= direct_pulse0_counted;
                 direct_pulse0_pending <= (direct_pulse0_command_count != 0);
+                if ((direct_pulse0_command_count != 0)) begin
+                    reg_word19_shown <= direct_pulse0_counted;
+                end
+                else begin
+                    reg_word19_shown <= 0;
+                end
             end
             if (direct_pulse0_waiting) begin
                 direct_pulse0_gap <= direct_pulse0_gap_less;
@@ -3988,10 +3998,11 @@ assign direct_pulse1_command_busy = (direct_pulse1_command_load || direct_pulse1
 
 
 
-assign direct_pulse1_stepping = ((!direct_clear) && (!direct_pulse1_command_load) && (!direct_pulse1_waiting) && direct_ready && ((direct_pulse1_command_retarget && (direct_pulse1_command_count != 0)) || ((!direct_pulse1_command_retarget) && direct_pulse1_pending)));
+assign direct_pulse1_may_step = ((!direct_clear) && (!direct_pulse1_command_load) && (!direct_pulse1_waiting) && direct_ready && (direct_pulse1_command_retarget || direct_pulse1_pending));
+assign direct_pulse1_stepping = (direct_pulse1_may_step && (!(direct_pulse1_command_retarget && (direct_pulse1_command_count == 0))));
 
 
-always @(direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_stepping, direct_pulse1_command_load, direct_pulse1_command_count) begin: direct_pulse1_count_operands
+always @(direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_may_step, direct_pulse1_command_load, direct_pulse1_command_count) begin: direct_pulse1_count_operands
     if (((!direct_pulse1_command_load) && (!direct_pulse1_command_retarget))) begin
         direct_pulse1_count_operand = reg_word20_shown;
         direct_pulse1_count_addend = 16777215;
@@ -3999,14 +4010,14 @@ always @(direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_steppin
     else if ((direct_pulse1_command_count < 0)) begin
         direct_pulse1_count_operand = (~direct_pulse1_command_count[24-1:0]);
         direct_pulse1_count_addend = 1;
-        if (direct_pulse1_stepping) begin
+        if (direct_pulse1_may_step) begin
             direct_pulse1_count_addend = 0;
         end
     end
     else begin
         direct_pulse1_count_operand = direct_pulse1_command_count[24-1:0];
         direct_pulse1_count_addend = 0;
-        if (direct_pulse1_stepping) begin
+        if (direct_pulse1_may_step) begin
             direct_pulse1_count_addend = 16777215;
         end
     end
@@ -4064,8 +4075,13 @@ always @(posedge clock, negedge reset) begin: direct_pulse1_emit
         end
         else begin
             if (direct_pulse1_command_retarget) begin
-                reg_word20_shown <= direct_pulse1_counted;
                 direct_pulse1_pending <= (direct_pulse1_command_count != 0);
+                if ((direct_pulse1_command_count != 0)) begin
+                    reg_word20_shown <= direct_pulse1_counted;
+                end
+                else begin
+                    reg_word20_shown <= 0;
+                end
             end
             if (direct_pulse1_waiting) begin
                 direct_pulse1_gap <= direct_pulse1_gap_less;
@@ -4760,8 +4776,6 @@ always @(reg_word31__store21_word_value, homing0_state, homing0_negative) begin:
     else begin
         homing0_positive = homing0_negative;
     end
-    home_busy = (homing0_state != 3'b000);
-    homing0_port_load = ((homing0_state == 3'b001) || (homing0_state == 3'b011));
 end
 
 
@@ -4798,12 +4812,12 @@ always @(posedge clock, negedge reset) begin: homing0_next_load
 end
 
 
-always @(homing0_slot, out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
+always @(homing0_releasing, homing0_slot, out_active, pulse_busy, homing0_axis, homing0_switch, homing0_state) begin: homing0_edges
     reg drained;
     reg released;
     reg [2-1:0] zero;
     drained = ((!pulse_busy) && (!out_active));
-    released = ((homing0_state == 3'b100) && (!homing0_switch));
+    released = (homing0_releasing && (!homing0_switch));
     homing0_opened = released;
     homing0_gave_up = (drained && (((homing0_state == 3'b010) && (!homing0_switch)) || ((homing0_state == 3'b100) && homing0_switch)));
     homing0_finished = ((homing0_state == 3'b110) && (!out_active));
@@ -4898,45 +4912,57 @@ always @(posedge clock, negedge reset) begin: homing0_outcome
 end
 
 
+always @(home_idle, reg_word31__store21_word_strobe, reg_word35_shown, homing0_opened, homing0_gave_up, homing0_valid, homing0_finished, pulse_busy, core_clear, homing0_switch, homing0_state) begin: homing0_transition
+    homing0_following = homing0_state;
+    if ((core_clear || homing0_gave_up || homing0_finished)) begin
+        homing0_following = 3'b000;
+    end
+    else if ((homing0_state == 3'b000)) begin
+        if ((reg_word31__store21_word_strobe && home_idle && homing0_valid)) begin
+            homing0_following = 3'b001;
+        end
+    end
+    else if ((homing0_state == 3'b001)) begin
+        homing0_following = 3'b010;
+    end
+    else if ((homing0_state == 3'b010)) begin
+        if (homing0_switch) begin
+            homing0_following = 3'b011;
+        end
+    end
+    else if ((homing0_state == 3'b011)) begin
+        homing0_following = 3'b100;
+    end
+    else if ((homing0_state == 3'b100)) begin
+        if (homing0_opened) begin
+            if ((reg_word35_shown != 0)) begin
+                homing0_following = 3'b101;
+            end
+            else begin
+                homing0_following = 3'b110;
+            end
+        end
+    end
+    else if ((homing0_state == 3'b101)) begin
+        if ((!pulse_busy)) begin
+            homing0_following = 3'b110;
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: homing0_sequence
     if (reset == 0) begin
+        homing0_port_load <= 0;
+        homing0_releasing <= 0;
+        home_busy <= 0;
         homing0_state <= 3'b000;
     end
     else begin
-        if ((core_clear || homing0_gave_up || homing0_finished)) begin
-            homing0_state <= 3'b000;
-        end
-        else if ((homing0_state == 3'b000)) begin
-            if ((reg_word31__store21_word_strobe && home_idle && homing0_valid)) begin
-                homing0_state <= 3'b001;
-            end
-        end
-        else if ((homing0_state == 3'b001)) begin
-            homing0_state <= 3'b010;
-        end
-        else if ((homing0_state == 3'b010)) begin
-            if (homing0_switch) begin
-                homing0_state <= 3'b011;
-            end
-        end
-        else if ((homing0_state == 3'b011)) begin
-            homing0_state <= 3'b100;
-        end
-        else if ((homing0_state == 3'b100)) begin
-            if (homing0_opened) begin
-                if ((reg_word35_shown != 0)) begin
-                    homing0_state <= 3'b101;
-                end
-                else begin
-                    homing0_state <= 3'b110;
-                end
-            end
-        end
-        else if ((homing0_state == 3'b101)) begin
-            if ((!pulse_busy)) begin
-                homing0_state <= 3'b110;
-            end
-        end
+        homing0_state <= homing0_following;
+        home_busy <= (homing0_following != 3'b000);
+        homing0_port_load <= ((homing0_following == 3'b001) || (homing0_following == 3'b011));
+        homing0_releasing <= (homing0_following == 3'b100);
     end
 end
 

@@ -837,6 +837,7 @@ wire [23:0] card1_card_core1_regs_fifo2_direct_pulse4_counted;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap;
 wire [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_gap_operand;
+wire card1_card_core1_regs_fifo2_direct_pulse4_may_step;
 reg card1_card_core1_regs_fifo2_direct_pulse4_pending;
 wire card1_card_core1_regs_fifo2_direct_pulse4_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
@@ -851,6 +852,7 @@ wire [23:0] card1_card_core1_regs_fifo2_direct_pulse5_counted;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap;
 wire [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_gap_operand;
+wire card1_card_core1_regs_fifo2_direct_pulse5_may_step;
 reg card1_card_core1_regs_fifo2_direct_pulse5_pending;
 wire card1_card_core1_regs_fifo2_direct_pulse5_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
@@ -942,6 +944,7 @@ reg [2:0] card1_card_core1_regs_fifo2_homing2_asked;
 reg [2:0] card1_card_core1_regs_fifo2_homing2_axis;
 reg card1_card_core1_regs_fifo2_homing2_done;
 reg card1_card_core1_regs_fifo2_homing2_finished;
+reg [2:0] card1_card_core1_regs_fifo2_homing2_following;
 reg card1_card_core1_regs_fifo2_homing2_gave_up;
 reg [23:0] card1_card_core1_regs_fifo2_homing2_magnitude;
 reg card1_card_core1_regs_fifo2_homing2_negative;
@@ -951,6 +954,7 @@ reg [23:0] card1_card_core1_regs_fifo2_homing2_operand;
 reg [1:0] card1_card_core1_regs_fifo2_homing2_phase;
 reg card1_card_core1_regs_fifo2_homing2_positive;
 reg card1_card_core1_regs_fifo2_homing2_refused;
+reg card1_card_core1_regs_fifo2_homing2_releasing;
 reg card1_card_core1_regs_fifo2_homing2_seek_next;
 reg card1_card_core1_regs_fifo2_homing2_seeking;
 wire [23:0] card1_card_core1_regs_fifo2_homing2_signed_count;
@@ -959,11 +963,11 @@ reg [2:0] card1_card_core1_regs_fifo2_homing2_state;
 reg card1_card_core1_regs_fifo2_homing2_switch;
 reg card1_card_core1_regs_fifo2_homing2_valid;
 wire [1:0] card1_card_core1_regs_fifo2_homing2_port_home;
-reg card1_card_core1_regs_fifo2_homing2_port_load;
 reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
+reg card1_card_core1_regs_fifo2_homing2_port_load;
 wire [1:0] card1_card_core1_regs_fifo2_pulse_source4_pulses_mask;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
@@ -6224,10 +6228,11 @@ assign card1_card_core1_regs_fifo2_direct_pulse4_command_busy = (card1_card_core
 
 
 
-assign card1_card_core1_regs_fifo2_direct_pulse4_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse4_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse4_pending)));
+assign card1_card_core1_regs_fifo2_direct_pulse4_may_step = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready && (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget || card1_card_core1_regs_fifo2_direct_pulse4_pending));
+assign card1_card_core1_regs_fifo2_direct_pulse4_stepping = (card1_card_core1_regs_fifo2_direct_pulse4_may_step && (!(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse4_command_count == 0))));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word101_shown, card1_card_core1_regs_fifo2_direct_pulse4_stepping, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word101_shown, card1_card_core1_regs_fifo2_direct_pulse4_may_step, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget))) begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word101_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
@@ -6235,14 +6240,14 @@ always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0]);
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 1;
-        if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
+        if (card1_card_core1_regs_fifo2_direct_pulse4_may_step) begin
             card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
         end
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0];
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
-        if (card1_card_core1_regs_fifo2_direct_pulse4_stepping) begin
+        if (card1_card_core1_regs_fifo2_direct_pulse4_may_step) begin
             card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
         end
     end
@@ -6300,8 +6305,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         end
         else begin
             if (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget) begin
-                card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
                 card1_card_core1_regs_fifo2_direct_pulse4_pending <= (card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0);
+                if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count != 0)) begin
+                    card1_card_core1_regs_fifo2_reg_word101_shown <= card1_card_core1_regs_fifo2_direct_pulse4_counted;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_reg_word101_shown <= 0;
+                end
             end
             if (card1_card_core1_regs_fifo2_direct_pulse4_waiting) begin
                 card1_card_core1_regs_fifo2_direct_pulse4_gap <= card1_card_core1_regs_fifo2_direct_pulse4_gap_less;
@@ -6317,10 +6327,11 @@ assign card1_card_core1_regs_fifo2_direct_pulse5_command_busy = (card1_card_core
 
 
 
-assign card1_card_core1_regs_fifo2_direct_pulse5_stepping = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready && ((card1_card_core1_regs_fifo2_direct_pulse5_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0)) || ((!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) && card1_card_core1_regs_fifo2_direct_pulse5_pending)));
+assign card1_card_core1_regs_fifo2_direct_pulse5_may_step = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready && (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget || card1_card_core1_regs_fifo2_direct_pulse5_pending));
+assign card1_card_core1_regs_fifo2_direct_pulse5_stepping = (card1_card_core1_regs_fifo2_direct_pulse5_may_step && (!(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse5_command_count == 0))));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word102_shown, card1_card_core1_regs_fifo2_direct_pulse5_stepping, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word102_shown, card1_card_core1_regs_fifo2_direct_pulse5_may_step, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget))) begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word102_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
@@ -6328,14 +6339,14 @@ always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0]);
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 1;
-        if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
+        if (card1_card_core1_regs_fifo2_direct_pulse5_may_step) begin
             card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
         end
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0];
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
-        if (card1_card_core1_regs_fifo2_direct_pulse5_stepping) begin
+        if (card1_card_core1_regs_fifo2_direct_pulse5_may_step) begin
             card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
         end
     end
@@ -6393,8 +6404,13 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_direct
         end
         else begin
             if (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget) begin
-                card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
                 card1_card_core1_regs_fifo2_direct_pulse5_pending <= (card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0);
+                if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count != 0)) begin
+                    card1_card_core1_regs_fifo2_reg_word102_shown <= card1_card_core1_regs_fifo2_direct_pulse5_counted;
+                end
+                else begin
+                    card1_card_core1_regs_fifo2_reg_word102_shown <= 0;
+                end
             end
             if (card1_card_core1_regs_fifo2_direct_pulse5_waiting) begin
                 card1_card_core1_regs_fifo2_direct_pulse5_gap <= card1_card_core1_regs_fifo2_direct_pulse5_gap_less;
@@ -7089,8 +7105,6 @@ always @(card1_card_core1_regs_fifo2_reg_word113__store77_word_value, card1_card
     else begin
         card1_card_core1_regs_fifo2_homing2_positive = card1_card_core1_regs_fifo2_homing2_negative;
     end
-    card1_card_core1_regs_fifo2_home_busy = (card1_card_core1_regs_fifo2_homing2_state != 3'b000);
-    card1_card_core1_regs_fifo2_homing2_port_load = ((card1_card_core1_regs_fifo2_homing2_state == 3'b001) || (card1_card_core1_regs_fifo2_homing2_state == 3'b011));
 end
 
 
@@ -7127,12 +7141,12 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_slot, card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
+always @(card1_card_core1_regs_fifo2_homing2_releasing, card1_card_core1_regs_fifo2_homing2_slot, card1_card_core1_regs_fifo2_out_active, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_regs_fifo2_homing2_axis, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_edges
     reg drained;
     reg released;
     reg [2-1:0] zero;
     drained = ((!card1_card_core1_regs_fifo2_pulse_busy) && (!card1_card_core1_regs_fifo2_out_active));
-    released = ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && (!card1_card_core1_regs_fifo2_homing2_switch));
+    released = (card1_card_core1_regs_fifo2_homing2_releasing && (!card1_card_core1_regs_fifo2_homing2_switch));
     card1_card_core1_regs_fifo2_homing2_opened = released;
     card1_card_core1_regs_fifo2_homing2_gave_up = (drained && (((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && card1_card_core1_regs_fifo2_homing2_switch)));
     card1_card_core1_regs_fifo2_homing2_finished = ((card1_card_core1_regs_fifo2_homing2_state == 3'b110) && (!card1_card_core1_regs_fifo2_out_active));
@@ -7227,45 +7241,57 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing
 end
 
 
+always @(card1_card_core1_regs_fifo2_home_idle, card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe, card1_card_core1_regs_fifo2_reg_word117_shown, card1_card_core1_regs_fifo2_homing2_opened, card1_card_core1_regs_fifo2_homing2_gave_up, card1_card_core1_regs_fifo2_homing2_valid, card1_card_core1_regs_fifo2_homing2_finished, card1_card_core1_regs_fifo2_pulse_busy, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_homing2_switch, card1_card_core1_regs_fifo2_homing2_state) begin: card1_card_core1_regs_fifo2_homing2_transition
+    card1_card_core1_regs_fifo2_homing2_following = card1_card_core1_regs_fifo2_homing2_state;
+    if ((card1_card_core1_core_clear || card1_card_core1_regs_fifo2_homing2_gave_up || card1_card_core1_regs_fifo2_homing2_finished)) begin
+        card1_card_core1_regs_fifo2_homing2_following = 3'b000;
+    end
+    else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
+        if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle && card1_card_core1_regs_fifo2_homing2_valid)) begin
+            card1_card_core1_regs_fifo2_homing2_following = 3'b001;
+        end
+    end
+    else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b001)) begin
+        card1_card_core1_regs_fifo2_homing2_following = 3'b010;
+    end
+    else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b010)) begin
+        if (card1_card_core1_regs_fifo2_homing2_switch) begin
+            card1_card_core1_regs_fifo2_homing2_following = 3'b011;
+        end
+    end
+    else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b011)) begin
+        card1_card_core1_regs_fifo2_homing2_following = 3'b100;
+    end
+    else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
+        if (card1_card_core1_regs_fifo2_homing2_opened) begin
+            if ((card1_card_core1_regs_fifo2_reg_word117_shown != 0)) begin
+                card1_card_core1_regs_fifo2_homing2_following = 3'b101;
+            end
+            else begin
+                card1_card_core1_regs_fifo2_homing2_following = 3'b110;
+            end
+        end
+    end
+    else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b101)) begin
+        if ((!card1_card_core1_regs_fifo2_pulse_busy)) begin
+            card1_card_core1_regs_fifo2_homing2_following = 3'b110;
+        end
+    end
+end
+
+
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_homing2_sequence
     if (reset == 0) begin
+        card1_card_core1_regs_fifo2_homing2_port_load <= 0;
+        card1_card_core1_regs_fifo2_homing2_releasing <= 0;
+        card1_card_core1_regs_fifo2_home_busy <= 0;
         card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
     end
     else begin
-        if ((card1_card_core1_core_clear || card1_card_core1_regs_fifo2_homing2_gave_up || card1_card_core1_regs_fifo2_homing2_finished)) begin
-            card1_card_core1_regs_fifo2_homing2_state <= 3'b000;
-        end
-        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b000)) begin
-            if ((card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe && card1_card_core1_regs_fifo2_home_idle && card1_card_core1_regs_fifo2_homing2_valid)) begin
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b001;
-            end
-        end
-        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b001)) begin
-            card1_card_core1_regs_fifo2_homing2_state <= 3'b010;
-        end
-        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b010)) begin
-            if (card1_card_core1_regs_fifo2_homing2_switch) begin
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b011;
-            end
-        end
-        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b011)) begin
-            card1_card_core1_regs_fifo2_homing2_state <= 3'b100;
-        end
-        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b100)) begin
-            if (card1_card_core1_regs_fifo2_homing2_opened) begin
-                if ((card1_card_core1_regs_fifo2_reg_word117_shown != 0)) begin
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b101;
-                end
-                else begin
-                    card1_card_core1_regs_fifo2_homing2_state <= 3'b110;
-                end
-            end
-        end
-        else if ((card1_card_core1_regs_fifo2_homing2_state == 3'b101)) begin
-            if ((!card1_card_core1_regs_fifo2_pulse_busy)) begin
-                card1_card_core1_regs_fifo2_homing2_state <= 3'b110;
-            end
-        end
+        card1_card_core1_regs_fifo2_homing2_state <= card1_card_core1_regs_fifo2_homing2_following;
+        card1_card_core1_regs_fifo2_home_busy <= (card1_card_core1_regs_fifo2_homing2_following != 3'b000);
+        card1_card_core1_regs_fifo2_homing2_port_load <= ((card1_card_core1_regs_fifo2_homing2_following == 3'b001) || (card1_card_core1_regs_fifo2_homing2_following == 3'b011));
+        card1_card_core1_regs_fifo2_homing2_releasing <= (card1_card_core1_regs_fifo2_homing2_following == 3'b100);
     end
 end
 

@@ -38,7 +38,10 @@ def homing(clock, reset, port):
     NOT_FOUND.  ``ended`` marks every end.  ``taken`` is what HOME reads
     (AXIS, NEGATIVE), ``state`` what HOME_STATUS reads: BUSY (also in the
     clock of ``start``: a read right after the HOME write never sees the
-    HOME before it), DONE, NOT_FOUND, REFUSED, PHASE.
+    HOME before it), DONE, NOT_FOUND, REFUSED, PHASE.  ``busy``, ``load``
+    and ``count`` leave flip-flops, ``retarget`` one LUT after them (the
+    filtered switch), so that the direct pulses' selection and the
+    generator's 24-bit count start from registers.
 
     Switch trips in SEEK, releases in RELEASE (``count``: the next load's
     or retarget's, registered):
@@ -52,7 +55,12 @@ def homing(clock, reset, port):
         zero      _____________________/~~~\\_______
     """
     state_t = enum("IDLE", "SEEK_LOAD", "SEEK", "TURN", "RELEASE", "BACKOFF", "SETTLE")
-    state = Signal(state_t.IDLE)
+    state, following = Signal(state_t.IDLE), Signal(state_t.IDLE)   # following: the state after this clock
+    # What the direct pulses take from the state, each in a flip-flop of its
+    # own (loaded from ``following``, so in step with ``state``): the
+    # source's selection and the generator's decision then start from a
+    # register instead of a decoded state.
+    releasing = Signal(bool(0))   # state == RELEASE
     home_spec = regmap.register("HOME")
     index_field = home_spec.field("AXIS_INDEX")
     axes = port.axes
@@ -112,8 +120,6 @@ def homing(clock, reset, port):
             positive.next = not port.request[negative_bit]
         else:
             positive.next = negative
-        port.busy.next = state != state_t.IDLE
-        port.load.next = state == state_t.SEEK_LOAD or state == state_t.TURN
 
     @always_comb
     def sign():
@@ -139,7 +145,7 @@ def homing(clock, reset, port):
     @always_comb
     def edges():
         drained = not port.pulse_busy and not port.outputs_active
-        released = state == state_t.RELEASE and not switch
+        released = releasing and not switch
         opened.next = released
         gave_up.next = drained and ((state == state_t.SEEK and not switch) or (state == state_t.RELEASE and switch))
         finished.next = state == state_t.SETTLE and not port.outputs_active
@@ -207,31 +213,39 @@ def homing(clock, reset, port):
                 done.next = 1
                 port.ended.next = 1
 
-    @always_seq(clock.posedge, reset=reset)
-    def sequence():
+    @always_comb
+    def transition():
+        following.next = state
         if port.clear or gave_up or finished:
-            state.next = state_t.IDLE
+            following.next = state_t.IDLE
         elif state == state_t.IDLE:
             if port.start and port.idle and valid:
-                state.next = state_t.SEEK_LOAD
+                following.next = state_t.SEEK_LOAD
         elif state == state_t.SEEK_LOAD:
-            state.next = state_t.SEEK
+            following.next = state_t.SEEK
         elif state == state_t.SEEK:
             if switch:
-                state.next = state_t.TURN
+                following.next = state_t.TURN
         elif state == state_t.TURN:
-            state.next = state_t.RELEASE
+            following.next = state_t.RELEASE
         elif state == state_t.RELEASE:
             if opened:
                 if port.backoff != 0:
-                    state.next = state_t.BACKOFF
+                    following.next = state_t.BACKOFF
                 else:
-                    state.next = state_t.SETTLE
+                    following.next = state_t.SETTLE
         elif state == state_t.BACKOFF:
             if not port.pulse_busy:
-                state.next = state_t.SETTLE
+                following.next = state_t.SETTLE
 
-    return ask, index, select, command, sign, negate, next_load, edges, phases, show, outcome, sequence
+    @always_seq(clock.posedge, reset=reset)
+    def sequence():
+        state.next = following
+        port.busy.next = following != state_t.IDLE
+        port.load.next = following == state_t.SEEK_LOAD or following == state_t.TURN
+        releasing.next = following == state_t.RELEASE
+
+    return ask, index, select, command, sign, negate, next_load, edges, phases, show, outcome, transition, sequence
 
 
 def homing_ports(axes=AXES.default):

@@ -33,6 +33,10 @@ def direct_pulse(clock, reset, command, out):
     pending = Signal(bool(0))
     waiting = Signal(bool(0))
     stepping = Signal(bool(0))   # a request at the coming edge
+    # ``stepping`` but for a retarget of 0: the adder's operands take it, so
+    # that the 24-bit zero test of ``count`` (behind the source's selection)
+    # is not in series with the carry chain; a retarget of 0 then writes 0.
+    may_step = Signal(bool(0))
     # One adder per counter: remaining takes |count| (count ^ sign + sign) on
     # a load and remaining - 1 on a request; gap takes period - 1 on a
     # request and gap - 1 while waiting.
@@ -50,26 +54,27 @@ def direct_pulse(clock, reset, command, out):
 
     @always_comb
     def decide():
+        may_step.next = (not command.clear and not command.load and not waiting and out.ready
+                         and (command.retarget or pending))
         # a retarget of 0 stops at once, a request in its clock included
-        stepping.next = (not command.clear and not command.load and not waiting and out.ready
-                         and ((command.retarget and command.count != 0) or (not command.retarget and pending)))
+        stepping.next = may_step and not (command.retarget and command.count == 0)
 
     @always_comb
     def count_operands():
-        # |count| on a load or a retarget (less one with a request in the retarget's clock),
-        # remaining - 1 otherwise
+        # |count| on a load or a retarget (less one with a request in the retarget's clock,
+        # or one that may come: see may_step), remaining - 1 otherwise
         if not command.load and not command.retarget:
             count_operand.next = command.remaining
             count_addend.next = all_ones
         elif command.count < 0:
             count_operand.next = ~command.count[count_bits:]
             count_addend.next = 1
-            if stepping:
+            if may_step:
                 count_addend.next = 0
         else:
             count_operand.next = command.count[count_bits:]
             count_addend.next = 0
-            if stepping:
+            if may_step:
                 count_addend.next = all_ones
 
     @always_comb
@@ -109,8 +114,11 @@ def direct_pulse(clock, reset, command, out):
             waiting.next = command.period != 1
         else:
             if command.retarget:
-                command.remaining.next = counted
                 pending.next = command.count != 0
+                if command.count != 0:
+                    command.remaining.next = counted
+                else:   # the adder may have taken a request off 0
+                    command.remaining.next = 0
             if waiting:   # the period's count runs on after the last request too (a retarget may follow)
                 gap.next = gap_less
                 waiting.next = gap != 1
