@@ -90,14 +90,17 @@ class Family:
         raise NotImplementedError(self.key)
 
     def top_constraints(self, ports, work):
-        """The pin file of a top with ``ports`` (port bit names): the family's own, with the
-        encoder pins of ``<name>_encoders<suffix>`` added for a build with encoders."""
-        extra = self.constraints.with_name(f"{self.constraints.stem}_encoders{self.constraints.suffix}")
-        wanted = {port for port in self._parse_pins(extra.read_text())} if extra.exists() else set()
-        if not wanted or not wanted <= ports:
+        """The pin file of a top with ``ports`` (port bit names): the family's own, with each
+        supplementary file ``<name>_<part><suffix>`` beside it whose ports the top has added
+        (``_encoders``: a build with encoders; ``_axis_z`` .. ``_axis_c``: a build with that axis)."""
+        parts = [extra for extra in sorted(self.constraints.parent.glob(
+                     f"{self.constraints.stem}_*{self.constraints.suffix}"))
+                 if set(self._parse_pins(extra.read_text())) <= ports]
+        if not parts:
             return self.constraints
-        path = work / f"top_encoders{self.constraints.suffix}"
-        path.write_text(self.constraints.read_text() + extra.read_text())
+        stems = "_".join(extra.stem[len(self.constraints.stem) + 1:] for extra in parts)
+        path = work / f"top_{stems}{self.constraints.suffix}"
+        path.write_text(self.constraints.read_text() + "".join(extra.read_text() for extra in parts))
         return path
 
     def unit_constraints(self, clock_port, work, unit):

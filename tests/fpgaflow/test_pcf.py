@@ -110,3 +110,26 @@ def test_a_top_with_encoders_gets_their_pins_added_on_balls_of_their_own(family,
     assert set(pins) == set(base) | ENCODER_PORTS
     shared = [ball for ball, count in Counter(pins.values()).items() if count > 1]
     assert not shared, f"balls used twice: {shared}"
+
+
+# The STEP/DIR, limit and home pins of the axes beyond X and Y (rtl/interfaces/card.py: MotorPins, axes)
+AXIS_PORTS = {axis: {f"motor_{pin}_{axis}" for pin in ("step", "dir", "limit_pos", "limit_neg", "home")}
+              for axis in "zabc"}
+
+
+@pytest.mark.parametrize("axes", [3, 4, 6])
+def test_a_top_of_more_axes_gets_their_pins_added_on_balls_of_their_own(axes, tmp_path):
+    base = ECP5.pins()
+    extra = set().union(*(AXIS_PORTS[axis] for axis in "zabc"[:axes - 2]))
+    pins = ECP5.pins(ECP5.top_constraints(set(base) | extra, tmp_path))
+    assert set(pins) == set(base) | extra
+    shared = [ball for ball, count in Counter(pins.values()).items() if count > 1]
+    assert not shared, f"balls used twice: {shared}"
+
+
+def test_every_ecp5_pin_file_uses_balls_no_other_uses(tmp_path):
+    every = set(ECP5.pins()) | ENCODER_PORTS | set().union(*AXIS_PORTS.values())
+    pins = ECP5.pins(ECP5.top_constraints(every, tmp_path))
+    assert set(pins) == every
+    shared = [ball for ball, count in Counter(pins.values()).items() if count > 1]
+    assert not shared, f"balls used twice: {shared}"
