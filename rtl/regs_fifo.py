@@ -15,11 +15,11 @@ from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
 from rtl.regs.axis_block import axis_block
 from rtl.regs.direct_pulse import direct_pulse
-from rtl.regs.encoder_block import encoder_block, guard_ferror, realign_on
+from rtl.regs.encoder_block import encoder_block, realign_on
 from rtl.regs.feed_rate import feed_rate
 from rtl.regs.pulse_out import pulse_out
 from rtl.regs.pulse_source import pulse_source
-from rtl.regs.reg_word import reg_word
+from rtl.regs.reg_word import reg_word, zero_extend
 from rtl.regs.sequencer import sequencer
 from rtl.regs.status_words import status_words
 from rtl.regs.sync_fifo import sync_fifo
@@ -199,7 +199,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
                                     positions=position, clear_stop=clear_stop, index_fired=index_fired,
                                     probe_fired=probe_fired)
         units += [encoder_block(clock, reset, pins, encoders), realign_on(clear_position, home_zero, encoders.realign),
-                  guard_ferror(encoders.ferror, guard.ferror)]
+                  zero_extend(encoders.ferror, guard.ferror)]
 
     read_end, clamp_end = chain[-1].data, chain[-1].clamped
     control, command, command_strobe = values["CONTROL"], values["COMMAND"], strobes["COMMAND"]

@@ -1,6 +1,6 @@
 """The encoder registers: every axis's encoder and following error, the card's
 time stamp and probe, wired to their register words (docs/encoders.md)."""
-from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv, modbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv, modbv
 
 from models import registers as regmap
 from models.parameters import AXES
@@ -150,22 +150,6 @@ def realign_on(clear_position, zero, realign):
             realign.next = zero
 
     return setting
-
-
-@block
-def guard_ferror(ferror, wide):
-    """``wide``, the guard's ``ferror`` (one bit for every axis a card may have), from the build's axes' flags."""
-    pad = len(wide) - len(ferror)
-
-    @always_comb
-    def widen():
-        wide.next = concat(intbv(0)[pad:], ferror)
-
-    @always_comb
-    def copy():
-        wide.next = ferror
-
-    return widen if pad else copy
 
 
 def encoder_block_ports(axes=AXES.default):

@@ -97,7 +97,7 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
         written.next = bus.wdata[span:] & bus.byte_mask[span:]
 
     merge = merge_bytes if spec.access == "RW" else mask_bytes  # RW: shown_wide is the register
-    generators = [select if alias is None else select_either, read_chain, _widen(shown, shown_wide)]
+    generators = [select if alias is None else select_either, read_chain, zero_extend(shown, shown_wide)]
     if not stored:
         return generators + [clamp_pass]
     generators += [select_write if alias is None else select_write_either, merge,
@@ -109,8 +109,8 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
 
 
 @block
-def _widen(narrow, wide):
-    """``wide`` (32 bits) is ``narrow`` zero-extended."""
+def zero_extend(narrow, wide):
+    """``wide`` is ``narrow`` zero-extended (or ``narrow`` itself when as wide)."""
     pad = len(wide) - len(narrow)
 
     @always_comb
