@@ -35,7 +35,7 @@ DEVICE_CODES = {"generic": 0, "ice40": 1}
 
 def expected_words(build, device):
     """ID, CLOCK_HZ, FIFO_SIZE and BUILD as docs/registers.md defines them."""
-    return {"ID": 0xDDAC << 16 | 0x0202,   # ID.VERSION 2.2
+    return {"ID": 0xDDAC << 16 | 0x0204,   # ID.VERSION 2.4
             "CLOCK_HZ": build["clock_hz"],
             "FIFO_SIZE": build["fifo_depth"],
             "BUILD": (build["coord_width"] | build.get("axes", 2) << 8 | VARIANT_BITS[build["variants"]] << 16

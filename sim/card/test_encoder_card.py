@@ -16,6 +16,8 @@ def _check_counts(seed, clocks, kind="verilator"):
     assert any(value for key, value in want.items() if key[1:] == ("QUAD_ERROR",))
 
 
+@pytest.mark.slow(reason="a Verilator build of the card with encoders (about a minute of CPU); the MyHDL card "
+                         "run below compares the same registers in the default set")
 @pytest.mark.parametrize("seed", [1, 2])
 def test_counts_times_and_latches_read_over_pci_equal_the_models(seed):
     _check_counts(seed, 400)
@@ -32,6 +34,8 @@ def test_counts_equal_the_models_on_the_myhdl_card_too():
     _check_counts(3, 120, kind="myhdl")
 
 
+@pytest.mark.slow(reason="the Verilator card with encoders; the stop's unit is proved and compared with its "
+                         "model every clock in the default set (test_encoder_units, formal following_error)")
 @pytest.mark.parametrize("axis", [0, 1])
 def test_a_following_error_trip_stops_the_card_naming_the_axis_within_the_stated_clocks(axis):
     clocks, reason, model_clocks = following_error_trip(axis)

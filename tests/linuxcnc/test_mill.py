@@ -20,6 +20,8 @@ pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
               pytest.mark.skipif(missing() is not None, reason=str(missing()))]
 
 
+@pytest.mark.slow(reason="a Verilator build of the 3-axis card at 1 MHz and a 7-second program: about 100 s; "
+                         "the two-axis LinuxCNC tests and the 3-axis card's benches run by default")
 def test_mill_program_on_every_axis_from_the_pins(linuxcnc_alone):
     run = run_folder()
     configure(run, "dda_xyz")
