@@ -1,6 +1,6 @@
-"""The register table's checks (``models/registers.py`` runs them as it loads)."""
+"""The register table's checks, on the table's data only (``models/registers.py`` runs them as it
+loads, through its ``check_table`` and ``check_axis_block``)."""
 from models import parameters
-from models import registers as regmap
 from models.axes import AXIS_NAMES
 
 
@@ -9,15 +9,14 @@ def _shape(reg):
     return (reg.access, tuple((f.name, f.lsb, f.width, f.signed) for f in reg.fields), reg.minimum, reg.maximum)
 
 
-def check_table(registers=None):
-    """Raise ValueError when the table (``registers``; default: ``REGISTERS`` and
-    ``ENCODER_REGISTERS``) contradicts itself."""
-    registers = regmap.REGISTERS + regmap.ENCODER_REGISTERS if registers is None else registers
+def check_table(registers, access_kinds, word_bytes):
+    """Raise ValueError when the table ``registers`` contradicts itself (``access_kinds``: the
+    access kinds there are, ``word_bytes``: a register's size)."""
     offsets, set_indices = set(), set()
     for reg in registers:
-        if reg.access not in regmap.ACCESS_KINDS:
+        if reg.access not in access_kinds:
             raise ValueError(f"{reg.name}: unknown access {reg.access}")
-        if reg.offset % regmap.WORD_BYTES or reg.offset in offsets:
+        if reg.offset % word_bytes or reg.offset in offsets:
             raise ValueError(f"{reg.name}: offset {reg.offset:#x} misaligned or used twice")
         offsets.add(reg.offset)
         used = 0
@@ -49,24 +48,25 @@ def check_table(registers=None):
                                  f"build parameter, not {item.build!r}")
 
 
-def check_axis_block(axis_registers=None):
-    """Raise ValueError when the per-axis block (``axis_registers``; default: ``AXIS_REGISTERS``)
-    contradicts itself, differs from X's and Y's BAR0 registers or does not fit BAR2.  A block
-    register is BAR0's for X and Y when BAR0 has <REG>_X and <REG>_Y (of the same shape), or the
-    block's only when BAR0 has neither; the block keeps ``AXIS_FREE`` free."""
-    axis_registers = regmap.AXIS_REGISTERS if axis_registers is None else axis_registers
-    check_table(axis_registers)
-    bar0 = {reg.name: reg for reg in regmap.REGISTERS + regmap.ENCODER_REGISTERS}
+def check_axis_block(axis_registers, bar0_registers, layout):
+    """Raise ValueError when the per-axis block ``axis_registers`` contradicts itself, differs
+    from X's and Y's registers among ``bar0_registers`` or does not fit BAR2 (``layout``: the
+    table's ACCESS_KINDS, WORD_BYTES, AXIS_BLOCK_BASE, AXIS_STRIDE, AXIS_FREE, BAR0_AXES,
+    IO_BAR_BITS, REG_BAR_BITS by name).  A block register is BAR0's for X and Y when BAR0 has
+    <REG>_X and <REG>_Y (of the same shape), or the block's only when BAR0 has neither; the block
+    keeps ``AXIS_FREE`` free."""
+    check_table(axis_registers, layout["ACCESS_KINDS"], layout["WORD_BYTES"])
+    bar0 = {reg.name: reg for reg in bar0_registers}
     for spec in axis_registers:
-        if spec.offset >= regmap.AXIS_STRIDE or spec.set_index is not None or spec.offset in regmap.AXIS_FREE:
+        if spec.offset >= layout["AXIS_STRIDE"] or spec.set_index is not None or spec.offset in layout["AXIS_FREE"]:
             raise ValueError(f"{spec.name}: outside its block, on a place kept free, or with a SET index")
-        shared = [bar0.get(f"{spec.name}_{AXIS_NAMES[axis]}") for axis in range(regmap.BAR0_AXES)]
+        shared = [bar0.get(f"{spec.name}_{AXIS_NAMES[axis]}") for axis in range(layout["BAR0_AXES"])]
         if any(same is None for same in shared) and any(same is not None for same in shared):
             raise ValueError(f"{spec.name}: BAR0 has it for some of X and Y only")
         for same in shared:
             if same is not None and (_shape(same) != _shape(spec) or same.option != spec.option):
                 raise ValueError(f"{same.name}: not the register {spec.name} of the block describes")
-    blocks_end = regmap.AXIS_BLOCK_BASE + regmap.AXIS_STRIDE * len(AXIS_NAMES)
-    if regmap.AXIS_BLOCK_BASE < 1 << regmap.IO_BAR_BITS or blocks_end > 1 << regmap.REG_BAR_BITS:
+    blocks_end = layout["AXIS_BLOCK_BASE"] + layout["AXIS_STRIDE"] * len(AXIS_NAMES)
+    if layout["AXIS_BLOCK_BASE"] < 1 << layout["IO_BAR_BITS"] or blocks_end > 1 << layout["REG_BAR_BITS"]:
         raise ValueError("the per-axis blocks overlap BAR0's registers or leave BAR2")
 

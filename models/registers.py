@@ -40,7 +40,10 @@ fields are added; ``VERSIONS`` says what each version added.
 from dataclasses import dataclass, field, replace
 
 from models import parameters
+from models import register_checks as checks
 from models.axes import AXIS_NAMES
+from models.encoder_model import (ERROR_COUNT_BITS, FILTER_BITS, FILTER_RESET, LIMIT_BITS, POLARITY_BITS, SCALE_BITS,
+                                  SCALE_MAX)
 
 ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
 WORD_BYTES = 4
@@ -361,9 +364,6 @@ REGISTERS = (
                    for bit, (name, text) in enumerate(_INPUT_TEXT))),
 )
 
-from models.encoder_model import (ERROR_COUNT_BITS, FILTER_BITS, FILTER_RESET, LIMIT_BITS,  # noqa: E402
-                                  POLARITY_BITS, SCALE_BITS, SCALE_MAX)
-
 _ENCODERS = "encoders"   # the build parameter the encoder registers need
 _FILTER_TEXT = ("a level is taken once seen FILTER + 1 clocks in a row (0..15; docs/encoders.md has the glitch "
                 "widths each rejects)")
@@ -563,8 +563,22 @@ def field_of(reg_name, **values):
     return word
 
 
-# the checks live beside the table (models/register_checks.py); the table is checked as it loads
-from models.register_checks import check_axis_block, check_table  # noqa: E402
+def check_table(registers=None):
+    """Raise ValueError when the table (``registers``; default: ``REGISTERS`` and
+    ``ENCODER_REGISTERS``) contradicts itself (``models/register_checks.py``)."""
+    checks.check_table(REGISTERS + ENCODER_REGISTERS if registers is None else registers, ACCESS_KINDS, WORD_BYTES)
 
+
+def check_axis_block(axis_registers=None):
+    """Raise ValueError when the per-axis block (``axis_registers``; default: ``AXIS_REGISTERS``)
+    contradicts itself, differs from X's and Y's BAR0 registers or does not fit BAR2."""
+    layout = dict(ACCESS_KINDS=ACCESS_KINDS, WORD_BYTES=WORD_BYTES, AXIS_BLOCK_BASE=AXIS_BLOCK_BASE,
+                  AXIS_STRIDE=AXIS_STRIDE, AXIS_FREE=AXIS_FREE, BAR0_AXES=BAR0_AXES, IO_BAR_BITS=IO_BAR_BITS,
+                  REG_BAR_BITS=REG_BAR_BITS)
+    checks.check_axis_block(AXIS_REGISTERS if axis_registers is None else axis_registers,
+                            REGISTERS + ENCODER_REGISTERS, layout)
+
+
+# the table is checked as it loads
 check_table()
 check_axis_block()
