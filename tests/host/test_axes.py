@@ -246,7 +246,6 @@ def test_plan_for_a_three_axis_card_and_the_refusal_on_the_default_one(tmp_path)
     assert bad.returncode == 2 and "2 values for 3 axes" in one_error_line(bad)
 
 
-@pytest.mark.xdist_group("three_axis_verilator_card")   # one worker: the first builds the card, the other reuses it
 def test_run_refuses_what_the_card_cannot_run_before_anything_moves():
     from rtl.convert import ROOT
     mill = ROOT / "examples" / "mill.ngc"
@@ -273,7 +272,9 @@ M2
 """
 
 
-@pytest.mark.xdist_group("three_axis_verilator_card")   # one worker: the first builds the card, the other reuses it
+@pytest.mark.slow(reason="a whole part on the 3-axis Verilator card through the CLI, about 30 s; the card's pins "
+                         "against the golden path for 3-D lines and G18/G19 arcs run by default in "
+                         "sim/card/test_card_e2e_axes.py and test_card_axes.py")
 def test_a_3d_program_runs_on_the_three_axis_verilator_card_to_its_end_points(tmp_path):
     part = tmp_path / "part.ngc"
     part.write_text(PART_3D)
