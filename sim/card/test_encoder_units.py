@@ -20,12 +20,12 @@ from sim.backends.waves import run_traced
 from sim.card.encoder_bench import DEFECTS, HALF_PERIOD, run_encoder, run_following_error, run_probe, with_defect
 
 BACKENDS = ["myhdl", "icarus"]
-# a Verilator model takes about 8 s to build (cached in build/vlt/ after): the encoder's in the default set
+# a Verilator model takes about 8 s to build (cached in build/vlt/ after): every one in the slow set
 SLOW_BUILD = pytest.mark.slow(reason="a Verilator build of its own, about 8 s")
 CLOCKS = 4000   # a few hundred count edges, every segment kind several times
 
 
-@pytest.mark.parametrize("seed, backend", [(1, "myhdl"), (1, "icarus"), (1, "verilator"), (2, "myhdl"),
+@pytest.mark.parametrize("seed, backend", [(1, "myhdl"), (1, "icarus"), pytest.param(1, "verilator", marks=SLOW_BUILD), (2, "myhdl"),
                                            (2, "icarus")])
 def test_encoder_counts_as_the_model_every_clock(seed, backend):
     model, seen = run_encoder(seed, CLOCKS, backend)
