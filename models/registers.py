@@ -37,16 +37,19 @@ ID.VERSION: the major version (bits 15:8) changes when a register or field
 moves or changes meaning, the minor version (bits 7:0) when registers or
 fields are added; ``VERSIONS`` says what each version added.
 """
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 from models import parameters
 from models import register_checks as checks
 from models.axes import AXIS_NAMES
-from models.encoder_model import (ERROR_COUNT_BITS, FILTER_BITS, FILTER_RESET, LIMIT_BITS, POLARITY_BITS, SCALE_BITS,
-                                  SCALE_MAX)
+# The map's names live in these modules and are read through this one (``regmap.X``).
+from models.axis_registers import (AXIS_BLOCK_BASE, AXIS_FREE, AXIS_REGISTERS, AXIS_STRIDE,  # noqa: F401
+                                   ENCODER_REGISTERS, REG_BAR_BITS)
+from models.machine_inputs import (INPUT_NAMES, INPUT_TEXT, INPUTS_PER_AXIS, LIMIT_NAMES, XY_INPUTS,  # noqa: F401
+                                   home_input, input_names, limit_bit, limit_input)
+from models.register_types import (ACCESS_KINDS, BAR0_AXES, WORD_BYTES, Field, Register,  # noqa: F401
+                                   build_word, capability, one_value)
 
-ACCESS_KINDS = ("RO", "RW", "W1C", "W1S", "WP")
-WORD_BYTES = 4
 ID_MAGIC = 0xDDAC
 # What each register-map version added (docs/registers.md lists it).
 VERSIONS = (
@@ -77,80 +80,6 @@ RATE_ONE = 1 << 16  # feed rate of one iteration per clock
 RATE_MAX = RATE_ONE // 2  # the DDA takes an iteration at most every other clock
 STEP_WIDTH_RESET = 1      # STEP_WIDTH's reset, and STEP_SPACE's: the timing of the cards before STEP_SPACE
 STEP_MODES = ("STEP_DIR", "UP_DOWN", "QUADRATURE")   # STEP_MODE.MODE codes
-BAR0_AXES = 2   # X and Y: their block registers are BAR0's (POS_X, ...), their inputs the first XY_INPUTS
-
-
-@dataclass(frozen=True)
-class Field:
-    name: str
-    lsb: int
-    width: int
-    text: str
-    signed: bool = False
-    build: str = None  # the build parameter whose value the field holds (RO only)
-    cleared: str = None  # RW only: what clears the field and holds it at 0 (the hardware's ``hw`` bits)
-
-    @property
-    def mask(self):
-        return ((1 << self.width) - 1) << self.lsb
-
-
-@dataclass(frozen=True)
-class Register:
-    name: str
-    offset: int
-    access: str
-    reset: int
-    text: str
-    fields: tuple = field(default_factory=tuple)
-    minimum: int = None
-    maximum: int = None
-    set_index: int = None
-    option: str = None  # the build parameter (0 or 1) a card must be built with for the register to exist
-
-    @property
-    def width(self):
-        return max(f.lsb + f.width for f in self.fields)
-
-    @property
-    def signed(self):
-        return len(self.fields) == 1 and self.fields[0].signed
-
-    def field(self, name):
-        for item in self.fields:
-            if item.name == name:
-                return item
-        raise ValueError(f"register {self.name} has no field {name}")
-
-
-def _one(name, width, text, signed=False):
-    """A register that holds one value in its low bits."""
-    return (Field(name, 0, width, text, signed),)
-
-
-def build_word(reg, values):
-    """The value of ``reg`` in a card built with ``values`` ({build parameter:
-    value}; the defaults of ``models/parameters.py`` for the rest): its reset
-    value with every ``build`` field holding its parameter's code."""
-    word = reg.reset
-    for item in reg.fields:
-        if item.build is None:
-            continue
-        value = values.get(item.build, parameters.PARAMETERS[item.build].default)
-        code = parameters.encode(item.build, value)
-        if not 0 <= code < 1 << item.width:
-            raise ValueError(f"{reg.name}.{item.name}: {item.build} = {value} does not fit {item.width} bits")
-        word = (word & ~item.mask) | code << item.lsb
-    return word
-
-
-def _capability(name, offset, text, fields):
-    """A read-only register of build facts; its reset value is that of the
-    default build's top (``gen/top.v``, built for iCE40)."""
-    constants = sum(value << item.lsb for item, value in fields)
-    reg = Register(name, offset, "RO", constants, text, tuple(item for item, _ in fields))
-    top = {item.build: parameters.PARAMETERS[item.build].default_for("top") for item in reg.fields if item.build}
-    return Register(name, offset, "RO", build_word(reg, top), text, reg.fields)
 
 
 _VARIANT_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(parameters.VARIANT_NAMES))
@@ -170,20 +99,6 @@ _INT_FIELDS = (
     Field("PROBE", 9, 1, "the armed probe latched PROBE_ENC and PROBE_POS (a build with encoders)"),
 )
 
-# The machine inputs, bit n of INPUT_POLARITY, INPUT_RAW and INPUT_ACTIVE (MACHINE_STATUS's RAW and ACTIVE:
-# the first XY_INPUTS): the E-stop and X's and Y's as the two-axis card had them, then every further axis's
-# three.  The table describes the largest build; a card of N axes has the inputs of its axes (``input_names``).
-_INPUT_TEXT = (("ESTOP", "emergency stop"), ("LIMIT_POS_X", "X limit, positive end"),
-               ("LIMIT_NEG_X", "X limit, negative end"), ("LIMIT_POS_Y", "Y limit, positive end"),
-               ("LIMIT_NEG_Y", "Y limit, negative end"), ("HOME_X", "X home switch"), ("HOME_Y", "Y home switch")
-               ) + tuple(item for name in AXIS_NAMES[BAR0_AXES:] for item in (
-                   (f"LIMIT_POS_{name}", f"{name} limit, positive end"),
-                   (f"LIMIT_NEG_{name}", f"{name} limit, negative end"), (f"HOME_{name}", f"{name} home switch")))
-INPUT_NAMES = tuple(name for name, _ in _INPUT_TEXT)
-XY_INPUTS = 7   # the two-axis card's inputs, those MACHINE_STATUS's RAW and ACTIVE carry
-INPUTS_PER_AXIS = 3   # LIMIT_POS, LIMIT_NEG, HOME of an axis from Z on
-# STOP_REASON.LIMITS bit n: LIMIT_NAMES[n], bit 2 * axis the axis's positive end, 2 * axis + 1 its negative
-LIMIT_NAMES = tuple(f"LIMIT_{end}_{name}" for name in AXIS_NAMES for end in ("POS", "NEG"))
 STOP_REASONS = ("NONE", "ESTOP", "WATCHDOG", "LIMIT", "FOLLOWING_ERROR")  # STOP_REASON.REASON codes
 _REASON_CODES = ", ".join(f"{code} {name}" for code, name in enumerate(STOP_REASONS))
 WATCHDOG_BITS = 24
@@ -220,53 +135,53 @@ REGISTERS = (
     Register("INT_ENABLE", 0x10, "RW", 0, "interrupt enables (INTA# = any enabled status bit)", _INT_FIELDS),
     Register("INT_STATUS", 0x14, "W1C", 0, "interrupt status, write 1 to clear", _INT_FIELDS),
     Register("LOW_WATER", 0x18, "RW", 0, "FIFO low-water mark",
-             _one("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this"), minimum=0, maximum=0xFFFF),
+             one_value("LEVEL", 16, "LOW_WATER interrupt when the FIFO level falls below this"), minimum=0, maximum=0xFFFF),
     Register("MARK_TAG", 0x1C, "RO", 0, "tag of the last MARK reached",
-             _one("TAG", 16, "the MARK command's tag")),
+             one_value("TAG", 16, "the MARK command's tag")),
     Register("POS_X", 0x20, "RO", 0, "X position in steps; reading it snapshots POS_Y (and every other axis's POS)",
-             _one("STEPS", 32, "steps that left the X pins, signed", signed=True)),
+             one_value("STEPS", 32, "steps that left the X pins, signed", signed=True)),
     Register("POS_Y", 0x24, "RO", 0, "Y position captured by the last POS_X read",
-             _one("STEPS", 32, "steps that left the Y pins, signed", signed=True)),
+             one_value("STEPS", 32, "steps that left the Y pins, signed", signed=True)),
     Register("FEED_RATE", 0x28, "RW", 4096,
              "target iteration rate, in 1/65536 per clock (ramps: docs/instructions.md)",
-             _one("RATE", 16, "iterations per clock times 65536 (32768: one every other clock, the most)"),
+             one_value("RATE", 16, "iterations per clock times 65536 (32768: one every other clock, the most)"),
              minimum=1, maximum=RATE_MAX, set_index=0),
     Register("RAMP_START", 0x2C, "RW", 4096,
              "iteration rate a move starts with, and ends with unless it blends, when RAMP_STEP is not 0",
-             _one("RATE", 16, "iterations per clock times 65536 (at most 32768)"),
+             one_value("RATE", 16, "iterations per clock times 65536 (at most 32768)"),
              minimum=1, maximum=RATE_MAX, set_index=1),
     Register("RAMP_STEP", 0x30, "RW", 0,
              "rate change per iteration: up towards FEED_RATE, down to RAMP_START before a stop (0: no ramp)",
-             _one("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
+             one_value("STEP", 16, "added to the rate each iteration until FEED_RATE; subtracted as the end nears"),
              minimum=0, maximum=0xFFFF, set_index=2),
     Register("STEP_WIDTH", 0x34, "RW", STEP_WIDTH_RESET,
              "STEP high time in clocks (the low time between steps: STEP_SPACE)",
-             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
+             one_value("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=3),
     Register("DIR_SETUP", 0x38, "RW", 1, "DIR stable before the STEP leading edge, in clocks",
-             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=4),
+             one_value("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=4),
     Register("DIR_HOLD", 0x3C, "RW", 1, "DIR stable after the STEP trailing edge, in clocks",
-             _one("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=5),
+             one_value("CLOCKS", 8, "1..255"), minimum=1, maximum=255, set_index=5),
     Register("DIR_POLARITY", 0x40, "RW", 0, "DIR pin polarity (bit n: axis n; a card of fewer axes keeps the "
              "bits of those it lacks, unused)",
              tuple(Field(name, bit, 1, f"1: invert the {name} DIR pin") for bit, name in enumerate(AXIS_NAMES))),
     Register("PULSE_PERIOD_X", 0x44, "RW", 2, "clocks between direct X pulses",
-             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=6),
+             one_value("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=6),
     Register("PULSE_PERIOD_Y", 0x48, "RW", 2, "clocks between direct Y pulses",
-             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=7),
+             one_value("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF, set_index=7),
     Register("PULSE_COUNT_X", 0x4C, "WP", 0, "direct mode: write a signed count of X pulses; read what is left",
-             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+             one_value("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
                   signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
     Register("PULSE_COUNT_Y", 0x50, "WP", 0, "direct mode: write a signed count of Y pulses; read what is left",
-             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
+             one_value("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
                   signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
-    _capability("CLOCK_HZ", 0x54, "clock the card was built for (build parameter clock_hz)", (
+    capability("CLOCK_HZ", 0x54, "clock the card was built for (build parameter clock_hz)", (
         (Field("HZ", 0, 32, "PCI clock in Hz: the host converts times (DWELL, STEP_WIDTH, DIR_*, "
                "rates) with it", build="clock_hz"), 0),
     )),
-    _capability("FIFO_SIZE", 0x58, "size of the data FIFO (build parameter fifo_depth)", (
+    capability("FIFO_SIZE", 0x58, "size of the data FIFO (build parameter fifo_depth)", (
         (Field("WORDS", 0, 16, "32-bit words the FIFO holds", build="fifo_depth"), 0),
     )),
-    _capability("BUILD", 0x5C, "options the card was built with", (
+    capability("BUILD", 0x5C, "options the card was built with", (
         (Field("COORD_WIDTH", 0, 8, "signed coordinate width of LINE and ARC operands, in bits "
                "(build parameter coord_width)", build="coord_width"), 0),
         (Field("AXES", 8, 4, "axes with STEP/DIR pins, X, Y, Z, A, B, C in that order (build parameter "
@@ -308,16 +223,16 @@ REGISTERS = (
     Register("INPUT_POLARITY", 0x6C, "RW", 0, "input polarity: 1 makes that input active low (a card of "
              "fewer axes has the bits of its axes' inputs only: the others read 0, writes to them are ignored)",
              tuple(Field(name, bit, 1, f"1: the {text} input is active low")
-                   for bit, (name, text) in enumerate(_INPUT_TEXT))),
+                   for bit, (name, text) in enumerate(INPUT_TEXT))),
     Register("INPUT_FILTER", 0x70, "RW", 3,
              "glitch filter: an input's new level counts once it held for this many samples",
-             _one("SAMPLES", 4, "1..15 samples, INPUT_TICK clocks apart (1: the first sample takes it)"),
+             one_value("SAMPLES", 4, "1..15 samples, INPUT_TICK clocks apart (1: the first sample takes it)"),
              minimum=1, maximum=15),
     Register("INPUT_TICK", 0x74, "RW", 1, "clocks between the input filter's samples",
-             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+             one_value("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("WATCHDOG", 0x78, "WP", 0,
              "host watchdog: write the timeout in clocks (0: off) at least that often; reads the clocks left",
-             _one("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG); a write "
+             one_value("CLOCKS", WATCHDOG_BITS, "clocks until the guard stops the card (reason WATCHDOG); a write "
                   f"above {(1 << WATCHDOG_BITS) - 1} loads {(1 << WATCHDOG_BITS) - 1}"),
              minimum=0, maximum=(1 << WATCHDOG_BITS) - 1),
     Register("HOME", 0x7C, "WP", 0, "home one axis (docs/machine.md); reads what the last HOME asked", (
@@ -336,107 +251,34 @@ REGISTERS = (
         Field("PHASE", 4, 2, ", ".join(f"{code} {name}" for code, name in enumerate(HOME_PHASES))),
     )),
     Register("HOME_SEEK_PERIOD", 0x84, "RW", 100, "clocks between steps towards the home switch",
-             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+             one_value("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("HOME_RELEASE_PERIOD", 0x88, "RW", 1000,
              "clocks between steps off the switch and of the back-off",
-             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
+             one_value("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
     Register("HOME_BACKOFF", 0x8C, "RW", 0, "steps on past the release point once the position is zeroed there",
-             _one("STEPS", 16, "0..65535"), minimum=0, maximum=0xFFFF),
+             one_value("STEPS", 16, "0..65535"), minimum=0, maximum=0xFFFF),
     Register("HOME_SEARCH", 0x90, "RW", 0xFFFF,
              "steps the switch must trip within, and release within after it tripped",
-             _one("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
+             one_value("STEPS", HOME_SEARCH_BITS, f"1..{(1 << HOME_SEARCH_BITS) - 1}"),
              minimum=1, maximum=(1 << HOME_SEARCH_BITS) - 1),
     Register("STEP_SPACE", 0x94, "RW", STEP_WIDTH_RESET, "minimum STEP low time between two steps, in clocks",
-             _one("CLOCKS", 8, "1..255 (reset: STEP_WIDTH's reset, so one value times both as before)"),
+             one_value("CLOCKS", 8, "1..255 (reset: STEP_WIDTH's reset, so one value times both as before)"),
              minimum=1, maximum=255, set_index=8),
     Register("STEP_MODE", 0x98, "RW", 0, "what the STEP and DIR pins of every axis carry (hostmot2's step_type)",
-             _one("MODE", 2, "0 step/dir; 1 up/down: STEP pulses the steps whose DIR would be high, DIR the "
+             one_value("MODE", 2, "0 step/dir; 1 up/down: STEP pulses the steps whose DIR would be high, DIR the "
                   "others; 2 quadrature: STEP, DIR an A/B pair, one change per step (A leads while DIR would "
                   "be high, a change a step period after the last); every mode keeps STEP_WIDTH, "
                   "STEP_SPACE, and DIR_HOLD + DIR_SETUP at a reversal; change it only while no step is "
                   "queued"), minimum=0, maximum=2),
     Register("INPUT_RAW", 0x9C, "RO", 0, "every input pin after the synchroniser, as wired (the bits of "
              "inputs the card lacks read 0)",
-             tuple(Field(name, bit, 1, f"the {text} pin") for bit, (name, text) in enumerate(_INPUT_TEXT))),
+             tuple(Field(name, bit, 1, f"the {text} pin") for bit, (name, text) in enumerate(INPUT_TEXT))),
     Register("INPUT_ACTIVE", 0xA0, "RO", 0, "every input filtered, polarity applied: 1 active (the bits of "
              "inputs the card lacks read 0)",
              tuple(Field(name, bit, 1, f"1: the {text} input is active")
-                   for bit, (name, text) in enumerate(_INPUT_TEXT))),
+                   for bit, (name, text) in enumerate(INPUT_TEXT))),
 )
 
-_ENCODERS = "encoders"   # the build parameter the encoder registers need
-_FILTER_TEXT = ("a level is taken once seen FILTER + 1 clocks in a row (0..15; docs/encoders.md has the glitch "
-                "widths each rejects)")
-# Card-wide registers of a build with encoders, in BAR0 (a build without them reads 0 there, ignores writes).
-ENCODER_REGISTERS = (
-    Register("TIMESTAMP", 0xA4, "RO", 0, "the card's time stamp: clocks since reset (ENC_TIME is one of its values)",
-             _one("CLOCKS", 32, "counts every clock, wrapping"), option=_ENCODERS),
-    Register("PROBE_CONTROL", 0xA8, "WP", FILTER_RESET << 8,
-             "the probe input: arm it, its polarity and filter (a write sets every field: write the word "
-             "read back with the fields changed)", (
-                 Field("ARM", 0, 1, "write 1 to arm: the next probe edge latches every axis's PROBE_ENC and "
-                       "PROBE_POS once; reads 1 while armed"),
-                 Field("INVERT", 1, 1, "1: the probe input is active low"),
-                 Field("FILTER", 8, FILTER_BITS, f"the probe's filter: {_FILTER_TEXT}"),
-             ), option=_ENCODERS),
-)
-
-# The per-axis blocks, in BAR2 only (the I/O BAR0 keeps to PCI's 256 bytes): block i, for axis i,
-# at AXIS_BLOCK_BASE + AXIS_STRIDE * i; offsets below are inside the block, the axis's own
-# registers first, the rest of the block free for more (reads 0, writes ignored).  A block register
-# whose <REG>_X and <REG>_Y BAR0 has is BAR0's for X and Y; the others are the block's only, for every axis.
-REG_BAR_BITS = 12   # BAR2: 4 KiB, BAR0's registers at 0x000..0x0FF, then the blocks
-AXIS_BLOCK_BASE = 0x100
-AXIS_STRIDE = 0x40
-AXIS_FREE = (0x0C,)   # kept for the axis's homing registers (AXIS_HOME)
-_COUNT_TEXT = "counts, signed, wrapping modulo 2**32"
-AXIS_REGISTERS = (
-    Register("POS", 0x00, "RO", 0, "the axis's position in steps: X's live, the others' as a read of X's "
-             "(POS_X, in BAR0 or block 0) captured them, one instant for all",
-             _one("STEPS", 32, "steps that left the axis's pins, signed", signed=True)),
-    Register("PULSE_PERIOD", 0x04, "RW", 2, "clocks between the axis's direct pulses",
-             _one("CLOCKS", 16, "1..65535"), minimum=1, maximum=0xFFFF),
-    Register("PULSE_COUNT", 0x08, "WP", 0, "direct mode: write a signed count of the axis's pulses; read what is left",
-             _one("COUNT", 24, "signed pulses (sign: direction); reads the pulses still to go",
-                  signed=True), minimum=-(1 << 23), maximum=(1 << 23) - 1),
-    Register("ENC_COUNT", 0x10, "RO", 0, "the encoder's count (4x quadrature, or step/dir)",
-             _one("COUNT", 32, _COUNT_TEXT, signed=True), option=_ENCODERS),
-    Register("ENC_STATUS", 0x14, "WP", 0, "the encoder's errors and direction; write 1 to QUAD_ERROR to clear it "
-             "and ERROR_COUNT (W1C in effect)", (
-                 Field("QUAD_ERROR", 0, 1, "sticky: a sample where A and B both changed (not counted); write 1 "
-                       "clears it and ERROR_COUNT"),
-                 Field("DIRECTION", 1, 1, "1: the last count was up"),
-                 Field("ERROR_COUNT", 8, ERROR_COUNT_BITS, "illegal transitions since the last clear, saturating"),
-             ), option=_ENCODERS),
-    Register("ENC_CONTROL", 0x18, "WP", FILTER_RESET << 8,
-             "the encoder's mode, index, polarity and filter (a write sets every field: write the word read "
-             "back with the fields changed)", (
-                 Field("MODE", 0, 1, "0 quadrature (4x), 1 step/dir (A step, counted on its rising edge, B direction)"),
-                 Field("INDEX_ZERO", 1, 1, "1: the index edge that latches also zeroes ENC_COUNT (index-enable)"),
-                 Field("INDEX_ARM", 2, 1, "write 1 to arm: the next index edge latches ENC_COUNT into "
-                       "ENC_INDEX_LATCH once (INT_STATUS.INDEX); reads 1 while armed"),
-                 Field("POLARITY", 4, POLARITY_BITS, "bit 0 A, 1 B, 2 index: 1 inverts that input"),
-                 Field("FILTER", 8, FILTER_BITS, f"the A, B and index filter: {_FILTER_TEXT}"),
-             ), option=_ENCODERS),
-    Register("ENC_INDEX_LATCH", 0x1C, "RO", 0, "ENC_COUNT as it was at the last armed index edge",
-             _one("COUNT", 32, _COUNT_TEXT, signed=True), option=_ENCODERS),
-    Register("ENC_TIME", 0x20, "RO", 0, "TIMESTAMP at the last count edge (velocity: docs/encoders.md)",
-             _one("CLOCKS", 32, "the time stamp, clocks"), option=_ENCODERS),
-    Register("ENC_SCALE", 0x24, "WP", 0, "encoder counts per step, unsigned 16.16; a write re-aligns the "
-             "following error (reads the value written)",
-             _one("SCALE", SCALE_BITS, "counts per step times 65536 (0: the step position is taken as 0)"),
-             minimum=0, maximum=SCALE_MAX, option=_ENCODERS),
-    Register("FERROR_LIMIT", 0x28, "RW", 0, "following-error limit: |ENC_FERROR| beyond it stops the card "
-             "(STOP_REASON FOLLOWING_ERROR)", _one("COUNTS", LIMIT_BITS, "counts (0: off)"),
-             minimum=0, maximum=(1 << LIMIT_BITS) - 1, option=_ENCODERS),
-    Register("ENC_FERROR", 0x2C, "RO", 0, "the following error: ENC_COUNT - round(POS * ENC_SCALE), both "
-             "from their last alignment (docs/encoders.md)", _one("COUNTS", 32, "counts, signed", signed=True),
-             option=_ENCODERS),
-    Register("PROBE_ENC", 0x30, "RO", 0, "ENC_COUNT at the last armed probe edge (PROBE_CONTROL)",
-             _one("COUNT", 32, _COUNT_TEXT, signed=True), option=_ENCODERS),
-    Register("PROBE_POS", 0x34, "RO", 0, "the axis's step position (POS) at the last armed probe edge",
-             _one("STEPS", 32, "steps, signed", signed=True), option=_ENCODERS),
-)
 
 IO_BAR_BITS = max(2, (max(r.offset for r in REGISTERS + ENCODER_REGISTERS) + WORD_BYTES - 1).bit_length())
 SET_TARGETS = {r.set_index: r for r in REGISTERS if r.set_index is not None}
@@ -498,28 +340,6 @@ def axis_aliases():
 
 
 _INPUT_REGISTERS = ("INPUT_POLARITY", "INPUT_RAW", "INPUT_ACTIVE")
-
-
-def input_names(axes):
-    """The machine inputs a card of ``axes`` axes has, bit n input n: ESTOP, X's and Y's, then Z's, ..."""
-    if not BAR0_AXES <= axes <= len(AXIS_NAMES):
-        raise ValueError(f"axes {axes} is not {BAR0_AXES}..{len(AXIS_NAMES)}")
-    return INPUT_NAMES[:XY_INPUTS + INPUTS_PER_AXIS * (axes - BAR0_AXES)]
-
-
-def limit_input(axis, positive):
-    """The input index (INPUT_NAMES) of axis ``axis``'s limit switch at its positive or negative end."""
-    return INPUT_NAMES.index(f"LIMIT_{'POS' if positive else 'NEG'}_{AXIS_NAMES[axis]}")
-
-
-def home_input(axis):
-    """The input index (INPUT_NAMES) of axis ``axis``'s home switch."""
-    return INPUT_NAMES.index(f"HOME_{AXIS_NAMES[axis]}")
-
-
-def limit_bit(axis, positive):
-    """The STOP_REASON.LIMITS bit of axis ``axis``'s limit at its positive or negative end."""
-    return LIMIT_NAMES.index(f"LIMIT_{'POS' if positive else 'NEG'}_{AXIS_NAMES[axis]}")
 
 
 def built_register(reg, axes):
