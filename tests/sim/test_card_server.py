@@ -8,7 +8,7 @@ import sys
 import pytest
 
 from models import registers as regmap
-from models.sim_machine import MachineConfig, Switch
+from models.sim_machine import MachineConfig, Motor, Switch
 from sim.card.card_server import ADVANCE, ANSWER, FIFO, READ, REQUEST, WRITE, main
 
 CLOCK_HZ = 1_000_000
@@ -217,7 +217,7 @@ def test_simulated_machine_and_estop_schedule(tmp_path):
         client.process.kill()
     assert regmap.field_value("STOP_REASON", "REASON", reason) == regmap.STOP_REASONS.index("ESTOP")
     assert record["machine"] == dict(positions=[5, 0], lost=[0, 0], inputs=1 << regmap.INPUT_NAMES.index("HOME_X"),
-                                     estop=False)
+                                     estop=False, counts=[None, None])
     assert [level for _, level in record["drive"]] == [0, 1, 0], "on, then the E-stop's stop"
     assert record["drive"][-1][0] == record["advances"][1][1], "sampled at the end of the ADVANCE spanning 30,000"
 
@@ -230,6 +230,20 @@ def test_machine_options_are_checked(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine", str(tmp_path / "bad.json")])
     assert "no switch input 'ESTOP'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--encoders", "--stall", "X@100"], "--machine has no motor on X"),
+    (["--encoders", "--stall", "Z@100"], "--stall must be AXIS@CLOCK"),
+    (["--encoders", "--stall", "Y@-1"], "--stall must be AXIS@CLOCK"),
+    (["--encoders", "--stall", "Y"], "--stall must be AXIS@CLOCK"), ([], "add --encoders")])
+def test_motor_options_are_checked_before_anything_is_written(tmp_path, capsys, argv, message):
+    (tmp_path / "machine.json").write_text(MachineConfig(motors={"Y": Motor()}).to_json())
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine",
+              str(tmp_path / "machine.json"), *argv])
+    assert message in capsys.readouterr().err
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["machine.json"]
 
 
 @pytest.mark.slow(reason="builds a three-axis Verilator card at the tests' clock (about a minute); "
