@@ -12,7 +12,9 @@ import pytest
 
 from host import encoders
 from host.card import Card
+from host.machine_io import MachineStopped
 from host.transports.simulated import SimTransport
+from models import registers as regmap
 from models.sim_machine import MachineConfig, Motor, SimMachine
 
 pytestmark = pytest.mark.xdist_group("encoder_card")
@@ -48,6 +50,8 @@ def _replay(edges, drive, encoder, stalls, last_clock):
     return machine, differences
 
 
+@pytest.mark.slow(reason="the Verilator card with encoders (a build of its own, about a minute of CPU); the MyHDL "
+                         "card below runs the motors in the default set, tests/models their definition")
 def test_compiled_motors_match_their_golden_model_and_the_card_counts_them():
     stalls = {}
     with SimTransport("verilator", machine=CONFIG, encoders=1) as transport:
@@ -75,18 +79,19 @@ def test_compiled_motors_match_their_golden_model_and_the_card_counts_them():
     machine, differences = _replay(edges, drive, encoder, stalls, last)
     assert differences == []
     assert (tuple(machine.positions), tuple(machine.lost)) == (state.positions, state.lost)
-    # X: 35 steps taken (from 3), 6 lost to the drive, 9 to the stall; Y: 1 step... as the pins had them
+    # X: 35 steps taken (from 3), 6 lost to the drive off, 9 to the stall; Y reversed (DIR low forward)
     assert state.positions == (38, 2) and state.lost == (15, 5)
     assert state.counts == (88, 8) == (machine.counts(0), machine.counts(1))   # 35 x 2.5 = 87.5 -> 88; 2 x 4
     assert tuple(read) == state.counts, "the card's decoder counted every edge the motors made"
 
 
-def test_the_myhdl_card_counts_its_motors_too():
+def test_the_myhdl_card_counts_its_motors_and_a_stall_trips_its_following_error():
     # the MyHDL machine process is the golden model itself: what is checked is the wiring to the card
     config = MachineConfig(motors={"X": Motor(counts_per_step=3, spacing=3), "Y": Motor(counts_per_step=(1, 2))})
     with SimTransport("myhdl", machine=config, encoders=1) as transport:
         card = Card(transport)
         card.configure()
+        encoders.set_following_error(card, 0, 3, 4)   # ENC_SCALE 3.0, FERROR_LIMIT 4 counts
         card.start(interrupts=("ERROR", "DONE"))
         card.set("FEED_RATE", 30000)
         card.drive(True)
@@ -95,4 +100,12 @@ def test_the_myhdl_card_counts_its_motors_too():
         transport.sleep(1e-6)
         state = transport.machine.state()
         read = tuple(encoders.read_encoder(card, axis).count for axis in (0, 1))
+        transport.machine.stall(0)
+        card.line(6, 0)              # the second step lost passes the limit: 6 counts behind
+        with pytest.raises(MachineStopped, match="FOLLOWING_ERROR"):
+            card.wait_done()
+        reason, drive = card.read("STOP_REASON"), transport.session.pin("drive_enable")
+        stalled = transport.machine.state()
     assert state.counts == read == (15, -3)   # -7 / 2 = -3.5 rounds up to -3
+    assert regmap.field_value("STOP_REASON", "AXIS", reason) == 0 and not drive
+    assert stalled.counts[0] == 15 and 2 <= stalled.lost[0] < 6
