@@ -2,9 +2,14 @@
 
 ``--card`` names it: ``verilator``, ``myhdl`` or ``icarus`` (the simulated
 card; ``--sim KIND`` says the same), ``pci`` (the one real card in this
-machine) or ``pci:DDDD:BB:DD.F`` (that one).  Every option is checked before
+machine) or ``pci:DDDD:BB:DD.F`` (that one).  ``run --encoders`` runs the
+Verilator card built with encoders, its simulated machine's motors (those of
+``--machine``, else one on X and one on Y as ``Motor()`` has them) turning
+its steps into encoder counts, and reports the path the encoders measured
+beside the pins' (``host/encoder_path.py``).  Every option is checked before
 the card is opened or anything is written.
 """
+import argparse
 import dataclasses
 import importlib.util
 import signal
@@ -13,19 +18,23 @@ import time
 from pathlib import Path
 
 from host import encoders, gcode, svg
+from host.encoder_path import encoder_samples, measure
 from host.card import Card
+from host.machine_io import MachineStopped
 from host.check import check
 from host.geometry import Arc, dimension
-from host.pin_measure import deviation, junction_gaps, pin_moves, pin_moves_of_points
+from host.pin_measure import deviation, junction_gaps, pin_moves, pin_moves_of_points, pin_points
 from host.planner import plan
 from host.selftest import selftest
 from host.stream import Stopped, stream
 from host.errors import ProgramError
 from host.transports import SIM_KINDS, open_transport
-from models.sim_machine import MachineConfig
+from models.sim_machine import MOTOR_AXES, MachineConfig, Motor
 from models.axes import names
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
+SETTLE_SECONDS = 1e-4   # card time between two looks at the encoders after the job, until they stand
+SETTLE_LOOKS = 200
 
 
 def refuse_unbuilt(drawing):
@@ -69,10 +78,45 @@ def add_commands(commands, positive, scales, count, axis_count):
     run.add_argument("--dir-setup-ns", type=positive, default=1000.0, help="DIR set-up time (default 1000)")
     run.add_argument("--dir-hold-ns", type=positive, default=1000.0, help="DIR hold time (default 1000)")
     run.add_argument("--low-water", type=count, help="refill when the FIFO falls below this (default: half)")
-    run.add_argument("--preview", help="simulated card: draw the pins' path over the drawing into this PNG")
+    run.add_argument("--preview", help="simulated card: draw the pins' path over the drawing into this PNG "
+                                       "(with --encoders, the measured path too)")
+    run.add_argument("--encoders", action="store_true",
+                     help="--card verilator built with encoders, the simulated machine's motors (--machine's, "
+                          "else the default one on X and Y) on them: report the path the encoders measured")
+    run.add_argument("--ferror-limit", type=_limit, metavar="COUNTS",
+                     help="with --encoders: FERROR_LIMIT of each motor's axis, counts (default 0: no stop)")
     for name, text in (("info", "identify the card and print what it reports"),
                        ("selftest", "register walk, FIFO loop and a short move checked on position")):
         card_options(commands.add_parser(name, help=text))
+
+
+def _limit(text):
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if not 0 <= value <= 0xFFFFFFFF:
+        raise argparse.ArgumentTypeError(f"{text!r}: FERROR_LIMIT is a count, 0 .. {0xFFFFFFFF}")
+    return value
+
+
+def encoder_options(options, spec, opening, refuse):
+    """``--encoders``: the transport opens the card with encoders and the machine with motors (checked
+    before the card is opened); the machine's motors, or None without ``--encoders``."""
+    machine = opening.get("machine")
+    if not options.encoders:
+        if options.ferror_limit is not None:
+            refuse("--ferror-limit needs --encoders")
+        return None
+    if spec != "verilator":
+        refuse("--encoders runs on --card verilator: its simulated machine records the encoder pins")
+    if options.axes not in (None, 2):
+        refuse(f"--encoders: the simulated machine's motors turn X and Y: a 2-axis card, not --axes {options.axes}")
+    machine = machine or MachineConfig()
+    if not machine.motors:
+        machine = dataclasses.replace(machine, motors={name: Motor() for name in MOTOR_AXES})
+    opening.update(machine=machine, encoders=1)
+    return machine.motors
 
 
 def card_spec(options, refuse):
@@ -92,9 +136,13 @@ def transport_options(options, spec, refuse):
     if not path.is_file():
         refuse(f"--machine {path}: no such file")
     try:
-        return {"machine": MachineConfig.from_json(path.read_text())}
+        config = MachineConfig.from_json(path.read_text())
     except ValueError as error:
         refuse(f"--machine {path}: {error}")
+    if config.motors and not getattr(options, "encoders", False):
+        refuse(f"--machine {path}: its motors need --encoders (python -m host run: a card built with encoder "
+               "inputs)")
+    return {"machine": config}
 
 
 def run_command(options, refuse, per_axis):
@@ -119,6 +167,7 @@ def run_command(options, refuse, per_axis):
                for item in drawing]
     wall = time.monotonic()
     opening = transport_options(options, spec, refuse)
+    motors = encoder_options(options, spec, opening, refuse)
     if options.axes is not None and spec in SIM_KINDS:
         opening["axes"] = options.axes
     with open_transport(spec, **opening) as transport:
@@ -134,6 +183,12 @@ def run_command(options, refuse, per_axis):
                                  dir_setup_ns=options.dir_setup_ns, dir_hold_ns=options.dir_hold_ns,
                                  rapid=options.rapid * scale, acceleration=options.acceleration,
                                  start_feed=options.start_feed, mark_interval=options.mark_interval)
+        for name, motor in (motors or {}).items():   # aligned here, before anything moved
+            numerator, denominator = motor.ratio
+            encoders.set_following_error(card, MOTOR_AXES.index(name), numerator / denominator,
+                                         options.ferror_limit or 0)
+        if motors:
+            card.drive(True)   # the motors turn only with their drives enabled
         planned = plan(drawing, machine)
         model = check(planned)
         print(f"card:       {transport.name}, {card.identity.clock_hz} Hz, FIFO {card.identity.fifo_words} words")
@@ -152,6 +207,11 @@ def run_command(options, refuse, per_axis):
             print(f"stopped:    card stopped (soft reset; {'idle, FIFO empty' if idle else 'STILL BUSY'}) at "
                   f"{position} steps = ({', '.join(f'{v:.4f}' for v in machine.mm(position))}) mm")
             return STOP_EXIT
+        except MachineStopped as error:   # E-stop, limit, watchdog or following error: what was measured
+            print(f"stopped:    {error}; position {card.position()} steps")
+            if motors:
+                _encoders_report(card, planned, model, transport, first_rise, motors)
+            return 1
         finally:
             stop.restore()
         print(f"streamed:   {result.words} words in {result.bursts} bursts, {result.interrupts} interrupts, "
@@ -162,8 +222,9 @@ def run_command(options, refuse, per_axis):
         print(f"job time:   {model.job_seconds:.4f} s planned; {result.seconds:.4f} s of card time")
         ended = result.position == tuple(planned.end[:len(result.position)])
         if transport.clocks is not None:
+            encoder_path = _encoders_report(card, planned, model, transport, first_rise, motors) if motors else None
             pins_end = _pins_report(planned, model, transport, first_rise, options.preview, card.timing["DIR_SETUP"],
-                                    axes)
+                                    axes, encoder_path)
             if axes > 2:
                 print(f"pins end:   {pins_end} steps (plan: {planned.end})")
                 ended = ended and pins_end == tuple(planned.end)
@@ -177,8 +238,9 @@ def _pin_rises(pins, axes):
     return pins.rises if axes == 2 else pins.axis_rises(axes)
 
 
-def _pins_report(planned, model, transport, first_rise, preview, dir_setup, axes):
-    """Print the pins' path against the golden model's and the drawing; the point it ended on."""
+def _pins_report(planned, model, transport, first_rise, preview, dir_setup, axes, encoder_path=None):
+    """Print the pins' path against the golden model's and the drawing; the point it ended on
+    (``encoder_path``: the encoders' path, a ``Measured``, drawn in the preview too)."""
     rises = _pin_rises(transport.pins, axes)[first_rise:]
     if axes == 2:
         moves = pin_moves(planned, model, rises)
@@ -195,11 +257,37 @@ def _pins_report(planned, model, transport, first_rise, preview, dir_setup, axes
     if preview:
         from host.preview import draw
 
+        pins = "the card's STEP/DIR pins" if encoder_path is None else "the pins"
+        encoders_path = "" if encoder_path is None else ", the encoders (green)"
         draw(planned, dataclasses.replace(model, points=moves), preview,
-             title=f"the card's STEP/DIR pins (blue: fed, orange: rapid) over the drawing (grey); "
-                   f"max deviation {steps:.2f} steps")
+             title=f"{pins} (blue: fed, orange: rapid){encoders_path} over the drawing (grey); "
+                   f"max deviation {steps:.2f} steps", measured=None if encoder_path is None else encoder_path.moves)
         print(f"preview:    {preview}")
     return moves[-1][1][-1] if moves else None
+
+
+def _encoders_report(card, planned, model, transport, first_rise, motors):
+    """Print what the encoders measured (counts, ENC_FERROR, the path against the drawing and the pins,
+    ``host/encoder_path.py``) once they stand; the ``Measured``."""
+    counts = None
+    for _ in range(SETTLE_LOOKS):   # the last steps' counts come after the lag and the spacing
+        transport.sleep(SETTLE_SECONDS)
+        if transport.machine.state().counts == counts:
+            break
+        counts = transport.machine.state().counts
+    readings = [encoders.read_encoder(card, axis) for axis in range(len(MOTOR_AXES))]
+    reason, which = card.stop_reason()
+    ratios = [motors[name].ratio if name in motors else (1, 1) for name in MOTOR_AXES]
+    samples = encoder_samples(transport.encoder_changes(), ratios)
+    rises = _pin_rises(transport.pins, 2)[first_rise:]
+    points = [(rise[0], point) for rise, point in zip(rises, pin_points(rises)[1:])]
+    result = measure(planned, model, [s for s in samples if s[0] >= (rises[0][0] if rises else 0)], points, (0, 0))
+    print(f"encoders:   counts {tuple(r.count for r in readings)} (ENC_COUNT) = "
+          f"({', '.join(f'{p:.3f}' for p in samples[-1][1]) if samples else '0, 0'}) steps; ENC_FERROR "
+          f"{tuple(r.ferror for r in readings)} counts; stop {' '.join([reason, *which]) if which else reason}")
+    print(f"measured:   {result.samples} encoder samples; max deviation from the drawing {result.drawing_mm:.5f} mm "
+          f"(at {result.drawing_where or '-'}), from the pins {result.pins_mm:.5f} mm (at clock {result.pins_clock})")
+    return result
 
 
 def _raise(message):

@@ -38,9 +38,10 @@ def _plot(axes, curves, picked, drawing):
                       linestyle="--" if rapid else "-")
 
 
-def draw(plan, result, out_path, title=""):
+def draw(plan, result, out_path, title="", measured=None):
     """Write ``out_path`` (PNG): the drawing in grey, the card's path (the model's
-    step points) in colour, rapid moves dashed."""
+    step points) in colour, rapid moves dashed; ``measured`` (``[(primitive index,
+    [points in steps])]``, the path the encoders measured): in green over it."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -57,9 +58,13 @@ def draw(plan, result, out_path, title=""):
         figure = pyplot.figure(figsize=(12, 11))
         views = [(figure.add_subplot(2, 2, n + 1), picked) for n, picked in enumerate(PROJECTIONS)]
         views.append((figure.add_subplot(2, 2, 4, projection="3d"), (0, 1, 2)))
+    machine = plan.machine
+    measured_mm = [[machine.mm(p) for p in points] for _, points in measured or () if points]
     for axes, picked in views:
         _plot(axes, drawing, picked, True)
         _plot(axes, path, picked, False)
+        for points in measured_mm:
+            axes.plot(*[[p[i] for p in points] for i in picked], color="tab:green", linewidth=0.6)
         axes.set_xlabel(f"{AXIS_NAMES[picked[0]]} (mm)")
         axes.set_ylabel(f"{AXIS_NAMES[picked[1]]} (mm)")
         if len(picked) == 3:

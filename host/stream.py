@@ -96,7 +96,9 @@ def _wait(card, result, should_stop, slice_seconds):
             raise Stopped()
         if card.transport.wait_interrupt(slice_seconds):
             break
-        if not regmap.field_value("STATUS", "BUSY", card.status()):
+        status = card.status()
+        # a stopped card keeps BUSY while its FIFO holds words: the caller's check raises MachineStopped
+        if not regmap.field_value("STATUS", "BUSY", status) or regmap.field_value("STATUS", "STOPPED", status):
             break
     pending = card.read("INT_STATUS")
     if pending:

@@ -1,4 +1,5 @@
-"""The simulated machine around the card: drives, switches and an E-stop (docs/machine.md, "Simulated machine").
+"""The simulated machine around the card: drives, motors with encoders, switches and an E-stop
+(docs/machine.md, "Simulated machine").
 
 What a user's test drives the simulated card's machine inputs with, and the
 golden model the compiled Verilator harness (``sim/backends/verilator/harness.cpp``)
@@ -7,14 +8,24 @@ and the MyHDL process (``sim/card/sim_machine.py``) are judged against:
 * ``Switch``: a switch on one axis at a step position, with hysteresis and
   seeded contact bounce.  ``switch_closed`` is its definition: where it reads
   closed, given whether it was closed before.
-* ``MachineConfig``: which inputs have a switch, where the axes start, which
-  DIR level moves an axis forward, how the E-stop is wired; JSON in and out
-  (``python -m host run --machine FILE``, the card server's ``--machine``).
-* ``SimMachine``: the machine clock by clock.  Each clock it takes the card's
-  STEP, DIR and DRIVE_ENABLE pins as they are after a rising edge; a STEP rise
-  moves its axis one step if DRIVE_ENABLE is high, else the drive loses it
-  (``lost`` counts them); then every switch reads its axis's position, and
-  ``pins`` is what the card's input pins show for the next rising edge.
+* ``Motor``: a motor with an incremental encoder on one axis
+  (``models/motor_model.MotorModel``): encoder counts per step (a whole number
+  or a ratio), the lag from a step to the encoder's edges, the edges' least
+  spacing (and a seeded jitter on it), an index every N counts, a stall from
+  a given clock.
+* ``MachineConfig``: which inputs have a switch, which axes a motor, where the
+  axes start, which DIR level moves an axis forward, how the E-stop is wired;
+  JSON in and out (``python -m host run --machine FILE``, the card server's
+  ``--machine``).
+* ``SimMachine``: the machine clock by clock.  Each clock (``clocks`` counts
+  them, 1 the first) it takes the card's STEP, DIR and DRIVE_ENABLE pins as
+  they are after a rising edge; a STEP rise moves its axis one step if
+  DRIVE_ENABLE is high and the axis's motor (if it has one) is not stalled,
+  else the step is lost (``lost`` counts them); then each motor's encoder
+  follows (``encoder_pins``), every switch reads its axis's position, and
+  ``pins`` and ``encoder_pins`` are what the card's input pins show for the
+  next rising edge.  A motor stalls from its ``stall_at`` clock on, or while
+  ``stall(axis)`` asks it to.
 
 Bounce: each change of a switch's contact makes its pin chatter for
 ``bounce`` clocks, in runs of 1 .. ``longest_run`` clocks at alternating
@@ -27,11 +38,17 @@ from dataclasses import asdict, dataclass, field
 
 from models import registers as regmap
 from models.axes import AXIS_NAMES
+from models.encoder_model import FILTER_RESET
+from models.motor_model import MotorModel
 
 INPUTS = regmap.input_names(2)      # the machine has X and Y: the two-axis card's inputs
 SWITCH_INPUTS = INPUTS[1:]          # every input but the E-stop can have a switch
 AXIS_OF = {name: AXIS_NAMES.index(name.rsplit("_", 1)[1]) for name in SWITCH_INPUTS}
+MOTOR_AXES = AXIS_NAMES[:2]        # the machine's axes that can have a motor
 MASK32 = 0xFFFFFFFF
+RATIO_MAX = 1 << 16     # a ratio's numerator and denominator
+LAG_MAX = 1 << 20       # clocks of lag (the compiled harness keeps that many positions)
+SPACING_MAX = 1 << 16   # clocks of spacing, and of jitter
 
 
 @dataclass(frozen=True)
@@ -67,15 +84,80 @@ def switch_closed(switch, position, closed_before):
     return into >= (-switch.hysteresis if closed_before else 0)
 
 
+def _whole(value):
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+@dataclass(frozen=True)
+class Motor:
+    """A motor with an encoder on its axis (``models/motor_model.MotorModel``):
+    ``counts_per_step`` encoder counts per step, a whole number >= 1 or a ratio
+    ``(numerator, denominator)`` (each 1 .. 2**16: (5, 2) is 2.5 counts a
+    step, (1, 3) a count every third step); ``lag`` clocks from a step to its
+    counts (0 .. 2**20); ``spacing``: at least this many clocks between two
+    encoder edges (1 .. 2**16; the default, ENC_FILTER's reset + 1, is the
+    closest the card counts at its reset filter), ``jitter``: 0 .. ``jitter``
+    clocks more after each edge (0 .. 2**16), drawn from ``seed``;
+    ``index_period``: the index is high while the count is a multiple of it
+    (0: no index); ``stall_at``: the motor stalls from this clock of the
+    machine on (1 is its first; None: only when asked, ``SimMachine.stall``)."""
+    counts_per_step: object = 4
+    lag: int = 0
+    spacing: int = FILTER_RESET + 1
+    jitter: int = 0
+    seed: int = 1
+    index_period: int = 0
+    stall_at: object = None
+
+    def __post_init__(self):
+        if isinstance(self.counts_per_step, list):   # JSON's form of a ratio
+            object.__setattr__(self, "counts_per_step", tuple(self.counts_per_step))
+
+    @property
+    def ratio(self):
+        """(numerator, denominator) of ``counts_per_step``."""
+        if _whole(self.counts_per_step):
+            return self.counts_per_step, 1
+        return tuple(self.counts_per_step)
+
+    def check(self, name):
+        ratio = self.counts_per_step
+        if _whole(ratio):
+            if not 1 <= ratio <= RATIO_MAX:
+                raise ValueError(f"{name}: counts_per_step must be a whole number 1 .. {RATIO_MAX} or a ratio")
+        elif (not isinstance(ratio, (tuple, list)) or len(ratio) != 2
+              or not all(_whole(v) and 1 <= v <= RATIO_MAX for v in ratio)):
+            raise ValueError(f"{name}: counts_per_step must be a whole number or a ratio [numerator, denominator], "
+                             f"each 1 .. {RATIO_MAX}, not {ratio!r}")
+        numbers = (self.lag, self.spacing, self.jitter, self.seed, self.index_period)
+        if not all(_whole(value) for value in numbers) or not (self.stall_at is None or _whole(self.stall_at)):
+            raise ValueError(f"{name}: lag, spacing, jitter, seed, index_period and stall_at are whole numbers")
+        if not 0 <= self.lag <= LAG_MAX or not 1 <= self.spacing <= SPACING_MAX or not 0 <= self.jitter <= SPACING_MAX:
+            raise ValueError(f"{name}: lag must be 0 .. {LAG_MAX}, spacing 1 .. {SPACING_MAX}, "
+                             f"jitter 0 .. {SPACING_MAX} clocks")
+        if not 0 <= self.index_period <= MASK32 >> 1 or not 0 <= self.seed <= MASK32:
+            raise ValueError(f"{name}: index_period or seed out of range")
+        if self.stall_at is not None and not 0 <= self.stall_at < 1 << 62:
+            raise ValueError(f"{name}: stall_at must be a clock, 0 .. 2**62")
+
+    def model(self, dir_positive):
+        numerator, denominator = self.ratio
+        return MotorModel(numerator, lag=self.lag, spacing=self.spacing, index_period=self.index_period,
+                          dir_positive=dir_positive, denominator=denominator, jitter=self.jitter, seed=self.seed)
+
+
 @dataclass(frozen=True)
 class MachineConfig:
     """``switches``: {input name (``SWITCH_INPUTS``): ``Switch``}; ``start``:
     the axes' positions at reset; ``dir_positive``: the DIR pin level that moves
-    each axis forward; ``estop_active_low``: the E-stop pin is 0 while pressed."""
+    each axis forward; ``estop_active_low``: the E-stop pin is 0 while pressed;
+    ``motors``: {axis name (``MOTOR_AXES``): ``Motor``}, on the encoder inputs
+    of a card built with encoders."""
     switches: dict = field(default_factory=dict)
     start: tuple = (0, 0)
     dir_positive: tuple = (True, True)
     estop_active_low: bool = False
+    motors: dict = field(default_factory=dict)
 
     def __post_init__(self):
         for name, switch in self.switches.items():
@@ -84,6 +166,12 @@ class MachineConfig:
             if not isinstance(switch, Switch):
                 raise ValueError(f"{name}: a Switch, not {switch!r}")
             switch.check(name)
+        for name, motor in self.motors.items():
+            if name not in MOTOR_AXES:
+                raise ValueError(f"no motor axis {name!r}: use one of {', '.join(MOTOR_AXES)}")
+            if not isinstance(motor, Motor):
+                raise ValueError(f"{name}: a Motor, not {motor!r}")
+            motor.check(f"motor {name}")
         if len(self.start) != 2 or len(self.dir_positive) != 2:
             raise ValueError("start and dir_positive give both axes")
 
@@ -97,9 +185,10 @@ class MachineConfig:
         try:
             data = json.loads(text)
             switches = {name: Switch(**values) for name, values in data.pop("switches", {}).items()}
-            return cls(switches=switches, start=tuple(data.pop("start", (0, 0))),
+            motors = {name: Motor(**values) for name, values in data.pop("motors", {}).items()}
+            return cls(switches=switches, motors=motors, start=tuple(data.pop("start", (0, 0))),
                        dir_positive=tuple(bool(v) for v in data.pop("dir_positive", (True, True))), **data)
-        except (TypeError, json.JSONDecodeError) as error:
+        except (TypeError, AttributeError, json.JSONDecodeError) as error:
             raise ValueError(f"not a machine configuration: {error}") from None
 
 
@@ -148,12 +237,36 @@ class SimMachine:
         self.positions = list(config.start)
         self.lost = [0, 0]
         self.estop = False
+        self.clocks = 0
         self._steps = [False, False]
+        self._stall = [False, False]
+        self.motors = [config.motors[name].model(config.dir_positive[axis]) if name in config.motors else None
+                       for axis, name in enumerate(MOTOR_AXES)]
         self._contacts = {name: _Contact(switch, self.positions[AXIS_OF[name]])
                           for name, switch in config.switches.items()}
 
     def press_estop(self, pressed=True):
         self.estop = bool(pressed)
+
+    def stall(self, axis, stalled=True):
+        """Stall (or free) the motor of ``axis`` (0: X) from the next clock on."""
+        if self.motors[axis] is None:
+            raise ValueError(f"axis {MOTOR_AXES[axis]} has no motor")
+        self._stall[axis] = bool(stalled)
+
+    @property
+    def encoder_pins(self):
+        """The encoder pins as a word, bit 3n: axis n's A, 3n + 1: B, 3n + 2: index (0 without a motor)."""
+        word = 0
+        for axis, motor in enumerate(self.motors):
+            if motor is not None:
+                a, b, index = motor.pins
+                word |= (a | b << 1 | index << 2) << 3 * axis
+        return word
+
+    def counts(self, axis):
+        """The encoder count of ``axis``'s motor."""
+        return self.motors[axis].counts
 
     @property
     def pins(self):
@@ -169,7 +282,17 @@ class SimMachine:
 
     def clock(self, step_x, dir_x, step_y, dir_y, drive_enable):
         """One clock: the card's pins after a rising edge; returns ``pins``."""
+        self.clocks += 1
         for axis, (step, direction) in enumerate(((step_x, dir_x), (step_y, dir_y))):
+            motor = self.motors[axis]
+            if motor is not None:
+                stall_at = self.config.motors[MOTOR_AXES[axis]].stall_at
+                motor.stalled = self._stall[axis] or (stall_at is not None and self.clocks >= stall_at)
+                steps, lost = motor.steps, motor.lost
+                motor.clock(step, direction, drive_enable)
+                self.positions[axis] += motor.steps - steps
+                self.lost[axis] += motor.lost - lost
+                continue
             rose = bool(step) and not self._steps[axis]
             self._steps[axis] = bool(step)
             if rose and drive_enable:

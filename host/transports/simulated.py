@@ -8,12 +8,13 @@ the card's clocks over ``clock_hz`` (the clock the card is built for, as
 CLOCK_HZ reads).  ``pins`` is the STEP/DIR log (``sim.card.card_bench.PinLog``);
 ``machine`` the simulated machine on the card's inputs (``SimTransport(...,
 machine=config)``, a ``models.sim_machine.MachineConfig``; docs/machine.md,
-"Simulated machine"): ``press_estop``, ``release_estop``, ``state()``.
+"Simulated machine"): ``press_estop``, ``release_estop``, ``stall(axis)``,
+``state()``.
 """
 import math
 
 from host.transports.base import SIM_KINDS, Transport, TransportError
-from models.parameters import AXES, CLOCK_HZ
+from models.parameters import AXES, CLOCK_HZ, ENCODERS
 from sim.backends.verilator.model import Stop
 from sim.card.card_e2e import DEFAULT_FIFO
 from sim.card.card_session import AccessError, CardSession
@@ -26,17 +27,22 @@ class SimTransport(Transport):
     built for it (its CLOCK_HZ reads it), the others for the default;
     ``machine``: a ``MachineConfig``, the simulated machine on the inputs;
     ``axes``: the card's build (``python -m rtl.top --axes N``: STEP/DIR of N axes
-    on ``pins``, BUILD.AXES = N)."""
+    on ``pins``, BUILD.AXES = N); ``encoders``: a build with encoders
+    (``--encoders``, BUILD.ENCODERS = 1; Verilator and MyHDL), whose inputs the
+    machine's motors drive."""
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, clock_hz=CLOCK_HZ.default, monitor=True, machine=None,
-                 axes=AXES.default):
+                 axes=AXES.default, encoders=ENCODERS.default):
         if kind not in SIM_KINDS:
             raise ValueError(f"unknown simulator {kind!r}: use one of {', '.join(SIM_KINDS)}")
         self.name = f"simulated card ({kind})"
         self.kind = kind
         self.clock_hz = clock_hz
         clock = dict(clock_hz=clock_hz) if kind == "verilator" else {}
-        self.session = CardSession(kind, fifo_depth, monitor=monitor, machine=machine, axes=axes, **clock)
+        if encoders and kind == "icarus":
+            raise ValueError("a card with encoders is simulated on verilator or myhdl, not icarus")
+        self.session = CardSession(kind, fifo_depth, monitor=monitor, machine=machine, axes=axes, encoders=encoders,
+                                   **clock)
         self.machine = self.session.machine
         self.device = self.session.device
         self.io_size = self.session.bars["io"]["size"]
@@ -87,6 +93,15 @@ class SimTransport(Transport):
     @property
     def pins(self):
         return self.session.log
+
+    def encoder_changes(self):
+        """The encoder pins the simulated machine's motors drove (Verilator): [(clock, word)] of every
+        change so far (``SimMachine.encoder_pins``'s word, set after the rising edge ``clock``)."""
+        if self.kind != "verilator" or self.machine is None:
+            raise ValueError("the encoder pins are recorded by the Verilator card's simulated machine")
+        clocks, words = self.session._runner.card.model.take_encoder_changes()
+        self._encoder_changes = getattr(self, "_encoder_changes", []) + list(zip(clocks.tolist(), words.tolist()))
+        return list(self._encoder_changes)
 
     def close(self):
         self.session.close()

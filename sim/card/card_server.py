@@ -1,9 +1,9 @@
 """The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
 
-``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--free-run CLOCKS]
-[--ppm N] [--machine FILE [--estop CLOCK ...]]``
-opens ``CardSession("verilator", clock_hz=N, axes=N)`` (a card built to report N in
-CLOCK_HZ, of N axes), listens on PATH, serves one client and, when the client goes,
+``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--encoders]
+[--free-run CLOCKS] [--ppm N] [--machine FILE [--estop CLOCK ...] [--stall AXIS@CLOCK ...]]``
+opens ``CardSession("verilator", clock_hz=N, axes=N, encoders=...)`` (a card built to report N in
+CLOCK_HZ, of N axes, with encoder inputs with ``--encoders``), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
 the STEP/DIR pin rises (``rises``: clock, X and Y stepped, their DIR pins;
 ``axis_rises``: clock, every axis's step position after it, from the raw
@@ -27,11 +27,15 @@ of each period: those since the ADVANCE before, this one included.
 
 ``--machine FILE`` puts the simulated machine of FILE (a
 ``models.sim_machine.MachineConfig`` as JSON: home and limit switches, E-stop
-wiring, drives; docs/machine.md) on the card's inputs, run in the compiled
-clock loop; ``--estop CLOCK`` (repeatable) toggles its E-stop at that card
-clock (pressed at the first, released at the second, ...), inside an
-ADVANCE if one spans it.  The log then has ``machine``: the machine's
-positions, the steps its drives lost (DRIVE_ENABLE low), its input pins.
+wiring, drives, motors with encoders; docs/machine.md) on the card's inputs,
+run in the compiled clock loop (its ``motors`` drive the encoder inputs: they
+need ``--encoders``); ``--estop CLOCK`` (repeatable) toggles its E-stop at that
+card clock (pressed at the first, released at the second, ...) and
+``--stall AXIS@CLOCK`` (repeatable; AXIS X or Y) stalls that axis's motor from
+that card clock on, each inside an ADVANCE if one spans it.  The log then has
+``machine``: the machine's positions, the steps it lost (DRIVE_ENABLE low, or
+a stalled motor), its input pins, the motors' encoder counts (None without a
+motor).
 
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
@@ -68,7 +72,7 @@ import sys
 from models import registers as regmap
 from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQUEST_WORDS, WRITE
 from models.parameters import AXES, CLOCK_HZ, ParameterError
-from models.sim_machine import MachineConfig
+from models.sim_machine import MOTOR_AXES, MachineConfig
 from sim.card.card_session import AccessError, CardSession
 
 WORD = struct.Struct("<I")
@@ -106,9 +110,10 @@ class CardServer:
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
-    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=()):
+    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=(), stalls=()):
         self.session, self.clock_hz = session, clock_hz
-        self.estop = sorted(estop)   # card clocks the E-stop toggles at (pressed first)
+        # (card clock, axis): the E-stop toggles at its clocks (pressed first, axis None), a motor stalls
+        self.events = sorted([(clock, None) for clock in estop] + list(stalls), key=lambda e: (e[0], e[1] or 0))
         self.pressed = False
         self.ppm, self.ppm_fraction = ppm, 0
         self.failure = failure  # (kind, after how many ADVANCEs) or None
@@ -174,13 +179,17 @@ class CardServer:
         raise ProtocolError(f"unknown request {op}")
 
     def _run_to(self, deadline):
-        """Run the card to clock ``deadline``, toggling the machine's E-stop at its clocks on the way."""
-        while self.estop and self.estop[0] <= deadline:
-            at = self.estop.pop(0)
+        """Run the card to clock ``deadline``, toggling the machine's E-stop and stalling its motors at
+        their clocks on the way."""
+        while self.events and self.events[0][0] <= deadline:
+            at, axis = self.events.pop(0)
             if at > self.now():
                 self.session.wait(at - self.now())
-            self.pressed = not self.pressed
-            self.session.machine.press_estop(self.pressed)
+            if axis is None:
+                self.pressed = not self.pressed
+                self.session.machine.press_estop(self.pressed)
+            else:
+                self.session.machine.stall(axis)
         if deadline > self.now():
             self.session.wait(deadline - self.now())
 
@@ -249,8 +258,18 @@ class CardServer:
         if self.session.machine is not None:
             state = self.session.machine.state()
             record["machine"] = dict(positions=state.positions, lost=state.lost, inputs=state.inputs,
-                                     estop=state.estop)
+                                     estop=state.estop, counts=state.counts)
         return record
+
+
+def _stall(parser, text, machine):
+    """``--stall AXIS@CLOCK`` as (card clock, axis index); refused unless the machine has that motor."""
+    name, _, clock = text.partition("@")
+    if not clock.isdigit() or name.upper() not in MOTOR_AXES:
+        parser.error(f"--stall must be AXIS@CLOCK with AXIS one of {', '.join(MOTOR_AXES)}, not {text}")
+    if machine is None or name.upper() not in machine.motors:
+        parser.error(f"--stall {text}: --machine has no motor on {name.upper()}")
+    return int(clock), MOTOR_AXES.index(name.upper())
 
 
 def main(argv=None):
@@ -262,6 +281,8 @@ def main(argv=None):
     parser.add_argument("--axes", type=int, default=AXES.default,
                         help=f"axes the simulated card is built with (BUILD.AXES; {AXES.bounds()}; "
                              f"default {AXES.default})")
+    parser.add_argument("--encoders", action="store_true",
+                        help="the card is built with encoder inputs (BUILD.ENCODERS; docs/encoders.md)")
     parser.add_argument("--free-run", type=int, default=0, metavar="CLOCKS",
                         help="clocks the card runs on its own after the client has gone (default 0)")
     parser.add_argument("--ppm", type=int, default=0,
@@ -273,6 +294,9 @@ def main(argv=None):
                                           "(models.sim_machine.MachineConfig)")
     parser.add_argument("--estop", type=int, action="append", default=[], metavar="CLOCK",
                         help="toggle the simulated machine's E-stop at this card clock (repeatable; needs --machine)")
+    parser.add_argument("--stall", action="append", default=[], metavar="AXIS@CLOCK",
+                        help="stall the simulated machine's motor of AXIS (X, Y) from this card clock on "
+                             "(repeatable; needs a motor on AXIS in --machine)")
     args = parser.parse_args(argv)
     failure = None
     if args.fail is not None:
@@ -291,6 +315,9 @@ def main(argv=None):
         parser.error("--estop needs --machine: the E-stop is the simulated machine's")
     if any(clock < 0 for clock in args.estop):
         parser.error("--estop clocks are card clocks since the server opened the card, not negative")
+    if machine is not None and machine.motors and not args.encoders:
+        parser.error("--machine: its motors drive encoder inputs: add --encoders (a card built with them)")
+    stalls = [_stall(parser, text, machine) for text in args.stall]
     if not 1 <= args.clock_hz <= 0xFFFFFFFF:
         parser.error(f"--clock-hz must be 1..{0xFFFFFFFF}, not {args.clock_hz}")
     try:
@@ -303,9 +330,10 @@ def main(argv=None):
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
     if os.path.exists(args.socket):
         parser.error(f"{args.socket} exists: remove it or choose another path")
-    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine, axes=args.axes)
+    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine, axes=args.axes,
+                          encoders=int(args.encoders))
     try:
-        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop)
+        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop, stalls)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         listener.bind(args.socket)
         os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user

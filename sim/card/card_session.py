@@ -30,7 +30,7 @@ bus cannot carry (ValueError, ``models.pci.check_access``) and raises
 """
 from myhdl import now
 
-from models.parameters import AXES, CLOCK_HZ
+from models.parameters import AXES, CLOCK_HZ, ENCODERS
 from models.pci import CONFIG_BYTES, check_access, check_value
 from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.backends.verilator.pci_bus import VerilatorBench
@@ -63,8 +63,9 @@ class CardSession:
     offsets in memory space, as a host maps them where it has no port I/O);
     offsets beyond BAR0 (the per-axis register blocks) go through BAR2
     either way; ``axes``: the card's build (``--axes N``; the others of
-    ``Build`` as by default); ``card_options``: more of ``CardUnderTest``'s
-    keywords (MyHDL: ``encoders``, ``pin_driver``).
+    ``Build`` as by default); ``encoders``: a build with encoders (Verilator,
+    MyHDL; the machine's motors drive their inputs); ``card_options``: more
+    of ``CardUnderTest``'s keywords (MyHDL: ``pin_driver``).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by
@@ -74,17 +75,20 @@ class CardSession:
 
     def __init__(self, kind, fifo_depth=DEFAULT_FIFO, host_options=None, trace=False, name="card_session",
                  monitor=True, clock_hz=CLOCK_HZ.default, machine=None, register_bar=0, axes=AXES.default,
-                 card_options=None):
+                 encoders=ENCODERS.default, card_options=None):
         if register_bar not in REGISTER_BARS:
             raise ValueError(f"register_bar must be 0 (I/O) or 2 (memory), not {register_bar!r}")
         self.kind = kind
         self.register_bar = register_bar
         simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
-        self.target = CardUnderTest(kind, fifo_depth, machine=simulated, axes=axes, **(card_options or {}))
+        card_options = dict(card_options or {})
+        if kind != "verilator":
+            card_options["encoders"] = card_options.get("encoders", encoders)
+        self.target = CardUnderTest(kind, fifo_depth, machine=simulated, axes=axes, **card_options)
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":
-            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz, axes)
+            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz, axes, encoders)
             if machine is not None:
                 self._runner.card.start_machine(machine)
         else:
@@ -224,8 +228,8 @@ def _drive_pin(pin, level):
 
 
 class _VerilatorRunner:
-    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz, axes):
-        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz, axes), idsel_bit=16 + TARGET_DEVICE)
+    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz, axes, encoders):
+        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz, axes, encoders), idsel_bit=16 + TARGET_DEVICE)
         self.bench = VerilatorBench(self.card, target, host_options=host_options, monitor=monitor)
         self.bench.start()
 

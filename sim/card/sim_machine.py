@@ -4,28 +4,33 @@
   (``VerilatedCard.start_machine``): no Python per clock.
 * MyHDL and Icarus: ``machine_process`` runs the golden model itself, at each
   falling edge on the pins after the rising edge before it, and sets the
-  input pins for the next rising edge.
+  input pins (and a card with encoders: the motors' encoder pins) for the
+  next rising edge.
 
 ``MachineHandle`` is what a session, the host's simulated transport and the
 card server hand to a user's test: ``press_estop``, ``release_estop``,
-``state()`` (positions, steps lost to a disabled drive, the input pins).
+``stall(axis)``, ``state()`` (positions, steps lost, the input pins, the
+motors' encoder counts).
 """
 from dataclasses import dataclass
 
 from myhdl import block, delay, instance
 
-from models.sim_machine import INPUTS
+from models.sim_machine import INPUTS, MOTOR_AXES
 
 
 @dataclass(frozen=True)
 class MachineState:
     """The simulated machine now: ``positions`` (steps its axes moved to),
-    ``lost`` (STEP rises per axis that came while DRIVE_ENABLE was low),
-    ``inputs`` (the pins, bit n: ``INPUT_NAMES[n]``) and ``estop`` (pressed)."""
+    ``lost`` (STEP rises per axis the axis did not follow: DRIVE_ENABLE low,
+    or its motor stalled), ``inputs`` (the pins, bit n: ``INPUT_NAMES[n]``),
+    ``estop`` (pressed) and ``counts`` (per axis its motor's encoder count,
+    None without a motor)."""
     positions: tuple
     lost: tuple
     inputs: int
     estop: bool
+    counts: tuple = (None, None)
 
     def pin(self, name):
         return bool(self.inputs >> INPUTS.index(name) & 1)
@@ -35,6 +40,10 @@ class MachineState:
 def machine_process(clock, pins, machine):
     """``machine`` (a ``SimMachine``) on ``pins`` (``MotorPins``)."""
     inputs = [getattr(pins, name.lower()) for name in INPUTS]
+    encoders = [getattr(pins, f"{pin}_{name.lower()}", None) for name in MOTOR_AXES
+                for pin in ("enc_a", "enc_b", "enc_index")]
+    if machine.config.motors and encoders[0] is None:
+        raise ValueError("the machine's motors drive encoder inputs: the card must be built with encoders")
 
     @instance
     def run():
@@ -42,9 +51,13 @@ def machine_process(clock, pins, machine):
             yield clock.negedge
             word = machine.clock(bool(pins.step_x), bool(pins.dir_x), bool(pins.step_y), bool(pins.dir_y),
                                  bool(pins.drive_enable))
+            encoder_word = machine.encoder_pins
             yield delay(1)
             for bit, pin in enumerate(inputs):
                 pin.next = bool(word >> bit & 1)
+            for bit, pin in enumerate(encoders):
+                if pin is not None:
+                    pin.next = bool(encoder_word >> bit & 1)
 
     return run
 
@@ -69,9 +82,21 @@ class MachineHandle:
     def release_estop(self):
         self.press_estop(False)
 
+    def stall(self, axis, stalled=True):
+        """Stall (or free) the motor of ``axis`` (0: X): from the next clock on it no longer turns."""
+        if MOTOR_AXES[axis] not in self.config.motors:
+            raise ValueError(f"axis {MOTOR_AXES[axis]} has no motor")
+        if self._model is not None:
+            self._model.stall(axis, stalled)
+        else:
+            self._machine.stall(axis, stalled)
+
     def state(self):
         if self._model is not None:
             positions, lost, inputs = self._model.machine_state()
+            counts = self._model.machine_encoders()[0]
         else:
             positions, lost, inputs = tuple(self._machine.positions), tuple(self._machine.lost), self._machine.pins
-        return MachineState(tuple(positions), tuple(lost), int(inputs), self._estop)
+            counts = [motor.counts if motor else None for motor in self._machine.motors]
+        counts = tuple(c if name in self.config.motors else None for c, name in zip(counts, MOTOR_AXES))
+        return MachineState(tuple(positions), tuple(lost), int(inputs), self._estop, counts)

@@ -4,15 +4,19 @@ pins against the golden model (``host.check``), and the starvation measure
 import pytest
 
 from bench.host_jobs import streaming_job
+from host import gcode
 from host.card import Card
+from host.machine_io import MachineStopped
 from host.check import check
 from host.pin_measure import junction_gaps, period_violations, pin_moves
 from host.planner import plan
 from host.stream import command_list, stream
 from host.transports.simulated import SimTransport
+from models.sim_machine import MachineConfig, Switch
 from sim.card.card_e2e import DEFAULT_FIFO
 
 FAST_PULSES = dict(step_width_ns=30, dir_setup_ns=30, dir_hold_ns=30)  # one clock each at 33 MHz
+GIVE_UP_CLOCKS = 3_000_000   # the job (200 steps at 600 mm/min) takes about 660,000 clocks
 
 
 def run_stream(kind, segments, seed=1, **options):
@@ -91,3 +95,18 @@ def test_a_bad_low_water_mark_is_refused():
         drawing, machine = streaming_job(5, card.identity.clock_hz, card.identity.coord_width)
         with pytest.raises(ValueError, match="low-water"):
             stream(card, plan(drawing, machine), low_water=card.identity.fifo_words)
+
+
+def test_a_stop_mid_stream_raises_instead_of_waiting_for_the_busy_card():
+    # the card stops on X's positive limit with the job's last lines still in its FIFO: STATUS.BUSY stays
+    # set while it is stopped, so the streamer must look at STATUS.STOPPED too (it waited for ever before)
+    config = MachineConfig(switches={"LIMIT_POS_X": Switch(60)})
+    with SimTransport("verilator", machine=config) as transport:
+        card = Card(transport)
+        machine = card.configure(steps_per_mm=(100.0, 100.0), **FAST_PULSES)
+        card.drive(True)
+        planned = plan(gcode.parse("G1 X0.5 F600\nG1 X1\nG1 X1.5\nG1 X2\n", "limit.ngc"), machine)
+        start = transport.clocks
+        with pytest.raises(MachineStopped, match="LIMIT"):
+            stream(card, planned, should_stop=lambda: transport.clocks - start > GIVE_UP_CLOCKS)
+        assert 60 <= card.position()[0] < 100 and transport.clocks - start < GIVE_UP_CLOCKS

@@ -8,7 +8,7 @@ import sys
 import pytest
 
 from models import registers as regmap
-from models.sim_machine import MachineConfig, Switch
+from models.sim_machine import MachineConfig, Motor, Switch
 from sim.card.card_server import ADVANCE, ANSWER, FIFO, READ, REQUEST, WRITE, main
 
 CLOCK_HZ = 1_000_000
@@ -217,7 +217,7 @@ def test_simulated_machine_and_estop_schedule(tmp_path):
         client.process.kill()
     assert regmap.field_value("STOP_REASON", "REASON", reason) == regmap.STOP_REASONS.index("ESTOP")
     assert record["machine"] == dict(positions=[5, 0], lost=[0, 0], inputs=1 << regmap.INPUT_NAMES.index("HOME_X"),
-                                     estop=False)
+                                     estop=False, counts=[None, None])
     assert [level for _, level in record["drive"]] == [0, 1, 0], "on, then the E-stop's stop"
     assert record["drive"][-1][0] == record["advances"][1][1], "sampled at the end of the ADVANCE spanning 30,000"
 
@@ -230,6 +230,20 @@ def test_machine_options_are_checked(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine", str(tmp_path / "bad.json")])
     assert "no switch input 'ESTOP'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--encoders", "--stall", "X@100"], "--machine has no motor on X"),
+    (["--encoders", "--stall", "Z@100"], "--stall must be AXIS@CLOCK"),
+    (["--encoders", "--stall", "Y@-1"], "--stall must be AXIS@CLOCK"),
+    (["--encoders", "--stall", "Y"], "--stall must be AXIS@CLOCK"), ([], "add --encoders")])
+def test_motor_options_are_checked_before_anything_is_written(tmp_path, capsys, argv, message):
+    (tmp_path / "machine.json").write_text(MachineConfig(motors={"Y": Motor()}).to_json())
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine",
+              str(tmp_path / "machine.json"), *argv])
+    assert message in capsys.readouterr().err
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["machine.json"]
 
 
 @pytest.mark.slow(reason="builds a three-axis Verilator card at the tests' clock (about a minute); "
@@ -254,3 +268,32 @@ def test_bar2_block_offsets_reach_every_axis_and_bar0_offsets_serve_as_before(tm
     finally:
         client.connection.close()
         client.process.kill()
+
+
+@pytest.mark.slow(reason="builds the Verilator card with encoders at the tests' clock (about a minute); the "
+                         "motors and their stall are checked in tests/sim/test_sim_machine_motors.py")
+def test_motors_follow_and_a_scheduled_stall_trips_the_following_error(tmp_path):
+    """--encoders --machine with a motor on X (4 counts a step), --stall X@12000: the card, its
+    following error set (ENC_SCALE 4.0, FERROR_LIMIT 6), runs a long line; the motor stops turning
+    at 12,000 and the card stops with FOLLOWING_ERROR on X; the log has the motor's count."""
+    (tmp_path / "machine.json").write_text(MachineConfig(motors={"X": Motor(counts_per_step=4)}).to_json())
+    client = Client(tmp_path, "--encoders", "--machine", str(tmp_path / "machine.json"), "--stall", "X@12000")
+    try:
+        client.ask(WRITE, regmap.axis_register("ENC_SCALE", 0).offset, 4 << 16)
+        client.ask(WRITE, regmap.axis_register("FERROR_LIMIT", 0).offset, 6)
+        client.ask(WRITE, regmap.offset("MACHINE_CONTROL"), 1)
+        client.ask(WRITE, regmap.offset("CONTROL"), 1)
+        client.ask(FIFO, 3, words=[1 << 28, LONG_LINE, 0])
+        client.ask(ADVANCE, 20000)
+        reason, _ = client.ask(READ, regmap.offset("STOP_REASON"))
+        record = client.finish()
+    finally:
+        client.connection.close()
+        client.process.kill()
+    assert (regmap.field_value("STOP_REASON", "REASON", reason), regmap.field_value("STOP_REASON", "AXIS", reason)) \
+        == (regmap.STOP_REASONS.index("FOLLOWING_ERROR"), 0)
+    machine = record["machine"]
+    # 12,000 clocks at one step every 16: about 750 steps turned; two lost steps (8 counts) pass the limit of 6
+    assert 600 < machine["positions"][0] < 800 and machine["counts"] == [4 * machine["positions"][0], None]
+    assert machine["lost"][0] >= 2 and record["final"]["POS_X"] == machine["positions"][0] + machine["lost"][0]
+    assert [level for _, level in record["drive"]] == [0, 1, 0]

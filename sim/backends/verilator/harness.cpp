@@ -1,7 +1,7 @@
 // Compiled harness around a Verilated card: the clock loop, the PCI segment
-// resolution, the STEP/DIR capture and the simulated machine (drives,
-// switches, E-stop: models/sim_machine.py is its definition, clock for
-// clock), behind a C interface for ctypes.
+// resolution, the STEP/DIR capture and the simulated machine (drives, motors
+// with encoders, switches, E-stop: models/sim_machine.py is its definition,
+// clock for clock), behind a C interface for ctypes.
 //
 // The model's ports come from vc_ports.h, written by sim/vlt/build.py from
 // the model's own header (name, width, direction, address).  Nothing here
@@ -112,21 +112,45 @@ struct Card {
         }
     }
 
+    // The motors' encoder pins to the card's ports; a change is recorded.
+    void drive_encoders() {
+        Machine& m = machine;
+        unsigned word = m.encoder_word();
+        for (int axis = 0; axis < 2; ++axis)
+            for (int pin = 0; pin < 3; ++pin)
+                if (m.motors[axis].ports[pin] >= 0) set(m.motors[axis].ports[pin], (word >> (3 * axis + pin)) & 1);
+        if (word != m.encoder_pins) {
+            m.encoder_clocks.push_back(clocks);
+            m.encoder_words.push_back(static_cast<uint8_t>(word));
+            m.encoder_pins = word;
+        }
+    }
+
     // One clock of models/sim_machine.py's SimMachine on the pins after an edge.
     void machine_clock(unsigned state) {
         Machine& m = machine;
         bool enabled = m.drive >= 0 && get(m.drive);
+        ++m.clocks;
         for (int axis = 0; axis < 2; ++axis) {
+            Motor& motor = m.motors[axis];
             bool step = (state >> (axis ? STEP_Y : STEP_X)) & 1;
             bool dir = (state >> (axis ? DIR_Y : DIR_X)) & 1;
             bool rose = step && !m.step_before[axis];
             m.step_before[axis] = step;
-            if (rose && enabled) m.position[axis] += dir == m.dir_positive[axis] ? 1 : -1;
-            else if (rose) ++m.lost[axis];
+            bool turns = !motor.present || !motor.stalled(m.clocks);
+            int delta = dir == m.dir_positive[axis] ? 1 : -1;
+            if (rose && enabled && turns) {
+                m.position[axis] += delta;
+                motor.steps += delta;
+            } else if (rose) {
+                ++m.lost[axis];
+            }
+            if (motor.present) motor.follow();
         }
         for (int input = 1; input < INPUTS; ++input)
             if (m.contacts[input].present) m.contacts[input].clock(m.position[kInputAxis[input]]);
         drive_inputs(enabled);
+        drive_encoders();
     }
 
     void dump(uint64_t time) {
@@ -374,8 +398,53 @@ void vc_machine_start(void* handle, const int* inputs, int drive, int64_t start_
     m.step_before[0] = (card->pin_state >> STEP_X) & 1;
     m.step_before[1] = (card->pin_state >> STEP_Y) & 1;
     m.on = true;
-    m.pins = ~0u;   // the first word is recorded
+    m.pins = m.encoder_pins = ~0u;   // the first words are recorded
     card->drive_inputs(m.drive >= 0 && card->get(m.drive));
+    card->drive_encoders();
+}
+
+// A motor on `axis` (before vc_machine_start): models/sim_machine.py's Motor;
+// `ports`: the card's A, B and index inputs of the axis (-1 where absent);
+// stall_at -1: none.
+void vc_machine_motor(void* handle, int axis, int64_t numerator, int64_t denominator, int64_t lag, int64_t spacing,
+                      int64_t jitter, uint32_t seed, int64_t index_period, int64_t stall_at, const int* ports) {
+    Motor& motor = static_cast<Card*>(handle)->machine.motors[axis];
+    motor = Motor();
+    motor.present = true;
+    motor.numerator = numerator;
+    motor.denominator = denominator;
+    motor.history.assign(static_cast<size_t>(lag), 0);
+    motor.spacing = spacing;
+    motor.jitter = jitter;
+    motor.state = seed ? seed : 1;
+    motor.index_period = index_period;
+    motor.stall_at = stall_at;
+    for (int pin = 0; pin < 3; ++pin) motor.ports[pin] = ports[pin];
+}
+
+// Stall (or free) the motor of `axis` from the next clock on.
+void vc_machine_stall(void* handle, int axis, int stalled) {
+    static_cast<Card*>(handle)->machine.motors[axis].asked_stall = stalled;
+}
+
+// The motors' counts (2; 0 without a motor), the machine's clocks, the
+// encoder word, the encoder changes recorded.
+void vc_machine_encoders(void* handle, int64_t* counts, uint64_t* state) {
+    Machine& m = static_cast<Card*>(handle)->machine;
+    counts[0] = m.motors[0].counts;
+    counts[1] = m.motors[1].counts;
+    state[0] = m.clocks;
+    state[1] = m.encoder_pins & 0x3F;
+    state[2] = m.encoder_clocks.size();
+}
+
+// Move the recorded encoder changes out: (clock, word the next edge takes).
+void vc_machine_take_encoder_changes(void* handle, uint64_t* clocks, uint8_t* words) {
+    Machine& m = static_cast<Card*>(handle)->machine;
+    std::memcpy(clocks, m.encoder_clocks.data(), m.encoder_clocks.size() * sizeof(uint64_t));
+    std::memcpy(words, m.encoder_words.data(), m.encoder_words.size());
+    m.encoder_clocks.clear();
+    m.encoder_words.clear();
 }
 
 void vc_machine_switch(void* handle, int input, int64_t position, int positive, int64_t hysteresis,

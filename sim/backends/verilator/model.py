@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from models.axes import AXIS_NAMES
-from models.sim_machine import INPUTS
+from models.sim_machine import INPUTS, MOTOR_AXES
 from sim.backends.verilator.build import VerilatorError
 
 LINES = ("ad", "cbe", "par", "frame", "irdy", "trdy", "devsel", "stop", "perr", "serr", "inta")
@@ -56,6 +56,11 @@ _SIGNATURES = {
     "vc_machine_estop": (None, [_p, _int]),
     "vc_machine_state": (None, [_p, ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(_u64), ctypes.POINTER(_u64)]),
     "vc_machine_take_changes": (None, [_p, _u64_array, _u8_array]),
+    "vc_machine_motor": (None, [_p, _int, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64,
+                                ctypes.c_int64, ctypes.c_uint32, ctypes.c_int64, ctypes.c_int64, _int_array]),
+    "vc_machine_stall": (None, [_p, _int, _int]),
+    "vc_machine_encoders": (None, [_p, ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(_u64)]),
+    "vc_machine_take_encoder_changes": (None, [_p, _u64_array, _u8_array]),
     "vc_trace_close": (None, [_p]),
 }
 _LIBRARIES = {}
@@ -209,10 +214,19 @@ class VerilatedModel:
         return clocks, states
 
     # ----- the simulated machine (models/sim_machine.py) -----------------------
-    def start_machine(self, config, inputs, drive):
+    def start_machine(self, config, inputs, drive, encoders=None):
         """Drive the machine inputs ``inputs`` (port names in ``INPUT_NAMES``
         order) from ``config`` (a ``MachineConfig``), every clock in the
-        harness, the drives following port ``drive`` (DRIVE_ENABLE)."""
+        harness, the drives following port ``drive`` (DRIVE_ENABLE); each
+        motor of ``config`` drives ``encoders[axis]`` (the port names of its
+        axis's A, B and index)."""
+        for name, motor in config.motors.items():
+            axis = MOTOR_AXES.index(name)
+            numerator, denominator = motor.ratio
+            ports = np.array([self.input_index(port) for port in encoders[axis]], dtype=np.intc)
+            self._lib.vc_machine_motor(self._handle, axis, numerator, denominator, motor.lag, motor.spacing,
+                                       motor.jitter, motor.seed, motor.index_period,
+                                       -1 if motor.stall_at is None else motor.stall_at, ports)
         for name, switch in config.switches.items():
             self._lib.vc_machine_switch(self._handle, INPUTS.index(name), switch.position, int(switch.positive),
                                         switch.hysteresis, switch.bounce, switch.longest_run,
@@ -230,6 +244,27 @@ class VerilatedModel:
         position, lost, pins = (ctypes.c_int64 * 2)(), (_u64 * 2)(), (_u64 * 2)()
         self._lib.vc_machine_state(self._handle, position, lost, pins)
         return (position[0], position[1]), (lost[0], lost[1]), pins[0]
+
+    def stall(self, axis, stalled=True):
+        """Stall (or free) the motor of ``axis`` from the next clock on."""
+        self._lib.vc_machine_stall(self._handle, int(axis), int(bool(stalled)))
+
+    def machine_encoders(self):
+        """(the motors' counts per axis, the machine's clocks, the encoder word)."""
+        counts, state = (ctypes.c_int64 * 2)(), (_u64 * 3)()
+        self._lib.vc_machine_encoders(self._handle, counts, state)
+        return (counts[0], counts[1]), state[0], state[1]
+
+    def take_encoder_changes(self):
+        """(clocks, words) of the encoder word's changes since the last call
+        (``SimMachine.encoder_pins``: set after the rising edge ``clocks``
+        counts, taken by the next)."""
+        counts, state = (ctypes.c_int64 * 2)(), (_u64 * 3)()
+        self._lib.vc_machine_encoders(self._handle, counts, state)
+        clocks, words = np.empty(state[2], np.uint64), np.empty(state[2], np.uint8)
+        if state[2]:
+            self._lib.vc_machine_take_encoder_changes(self._handle, clocks, words)
+        return clocks, words
 
     def take_machine_changes(self):
         """(clocks, words) of the input word's changes since the last call: the

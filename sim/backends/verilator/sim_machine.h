@@ -58,6 +58,63 @@ struct Contact {
     bool pin() const { return level != active_low; }
 };
 
+// A motor with an encoder, models/motor_model.py's MotorModel (the machine
+// moves its axis and counts lost steps; the motor keeps its own steps, from 0):
+// the target count round(steps * numerator / denominator) of `lag` clocks
+// before (a ring of the last `lag` step positions), walked one count at a
+// time, `spacing` - 1 clocks (plus xorshift jitter) between two counts.
+struct Motor {
+    bool present = false;
+    int64_t numerator = 4, denominator = 1;
+    int64_t spacing = 3, jitter = 0, index_period = 0, stall_at = -1;
+    uint32_t state = 1;
+    bool asked_stall = false;
+    std::vector<int64_t> history;
+    size_t head = 0;
+    int64_t steps = 0, counts = 0, wait = 0;
+    int ports[3] = {-1, -1, -1};  // A, B, index
+
+    bool stalled(uint64_t clock) const {
+        return asked_stall || (stall_at >= 0 && clock >= static_cast<uint64_t>(stall_at));
+    }
+    int64_t target(int64_t at) const {
+        __int128 a = 2 * static_cast<__int128>(at) * numerator + denominator, b = 2 * static_cast<__int128>(denominator);
+        __int128 q = a / b;
+        if (a % b != 0 && a < 0) --q;  // floor (b is positive)
+        return static_cast<int32_t>(static_cast<uint32_t>(static_cast<uint64_t>(q)));
+    }
+    int64_t draw() {
+        uint32_t x = state;
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        state = x;
+        return static_cast<int64_t>(x % static_cast<uint64_t>(jitter + 1));
+    }
+    void follow() {
+        int64_t then = steps;
+        if (!history.empty()) {
+            then = history[head];
+            history[head] = steps;
+            head = (head + 1) % history.size();
+        }
+        int64_t goal = target(then);
+        if (wait) {
+            --wait;
+        } else if (goal != counts) {
+            counts += goal > counts ? 1 : -1;
+            wait = spacing - 1 + (jitter ? draw() : 0);
+        }
+    }
+    // bit 0 A, 1 B, 2 index (models/encoder_model.py's GRAY: A leads B forwards)
+    unsigned pins() const {
+        static const unsigned kGray[4] = {0, 1, 3, 2};
+        unsigned word = kGray[((counts % 4) + 4) % 4];
+        if (index_period && counts % index_period == 0) word |= 4;
+        return word;
+    }
+};
+
 struct Machine {
     bool on = false;
     int inputs[INPUTS] = {-1, -1, -1, -1, -1, -1, -1};
@@ -71,6 +128,18 @@ struct Machine {
     unsigned pins = 0;
     std::vector<uint64_t> change_clocks;
     std::vector<uint8_t> change_pins;
+    Motor motors[2];
+    uint64_t clocks = 0;       // clocks since the machine started (1 the first)
+    unsigned encoder_pins = 0; // bit 3n: axis n's A, 3n + 1: B, 3n + 2: index
+    std::vector<uint64_t> encoder_clocks;
+    std::vector<uint8_t> encoder_words;
+
+    unsigned encoder_word() const {
+        unsigned value = 0;
+        for (int axis = 0; axis < 2; ++axis)
+            if (motors[axis].present) value |= motors[axis].pins() << (3 * axis);
+        return value;
+    }
 
     unsigned word() const {
         unsigned value = estop != estop_active_low ? 1u : 0u;

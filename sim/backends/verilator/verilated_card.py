@@ -13,7 +13,7 @@ INTA#, STEP rises): run in compiled code there, counted edge by edge by
 import numpy as np
 from myhdl import Signal, block, instance
 
-from models.sim_machine import INPUTS
+from models.sim_machine import INPUTS, MOTOR_AXES
 from rtl.convert import GEN_DIR
 from sim.backends.verilator.build import VerilatorError, build_model
 from sim.backends.verilator.model import LINES, PINS, Stop, VerilatedModel
@@ -55,8 +55,12 @@ class VerilatedCard:
 
     def start_machine(self, config):
         """The simulated machine of ``config`` (``models.sim_machine.MachineConfig``)
-        on the card's input pins, run in the compiled clock loop."""
-        self.model.start_machine(config, [f"pins_{name.lower()}" for name in INPUTS], "pins_drive_enable")
+        on the card's input pins (its motors on the encoder inputs of a card built
+        with encoders), run in the compiled clock loop."""
+        encoders = [[f"pins_{pin}_{name.lower()}" for pin in ("enc_a", "enc_b", "enc_index")] for name in MOTOR_AXES]
+        if config.motors and encoders[0][0] not in self.model.ports:
+            raise VerilatorError("the machine's motors drive encoder inputs: the card must be built with encoders")
+        self.model.start_machine(config, [f"pins_{name.lower()}" for name in INPUTS], "pins_drive_enable", encoders)
 
     def collect_pins(self, log):
         """Move the edges recorded so far into ``log`` (an ``ArrayPinLog``)."""
