@@ -1,9 +1,9 @@
 """The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
 
 ``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--free-run CLOCKS]
-[--ppm N] [--machine FILE [--estop CLOCK ...]]``
+[--ppm N] [--machine FILE [--estop CLOCK ...]] [--encoders [--encoder-walk CUE ...] [--index CUE ...]]``
 opens ``CardSession("verilator", clock_hz=N, axes=N)`` (a card built to report N in
-CLOCK_HZ, of N axes), listens on PATH, serves one client and, when the client goes,
+CLOCK_HZ, of N axes; ``--encoders``: built with encoders), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
 the STEP/DIR pin rises (``rises``: clock, X and Y stepped, their DIR pins;
 ``axis_rises``: clock, every axis's step position after it, from the raw
@@ -32,6 +32,12 @@ clock loop; ``--estop CLOCK`` (repeatable) toggles its E-stop at that card
 clock (pressed at the first, released at the second, ...), inside an
 ADVANCE if one spans it.  The log then has ``machine``: the machine's
 positions, the steps its drives lost (DRIVE_ENABLE low), its input pins.
+
+``--encoder-walk AXIS@CLOCK:COUNTS`` (repeatable) walks that axis's encoder
+A/B by COUNTS counts from that card clock on, one legal step every
+``encoder_pins.WALK_SPACING`` clocks; ``--index AXIS@CLOCK:WIDTH`` pulses its
+index high for WIDTH clocks (``sim/card/encoder_pins.py``; both need
+``--encoders``).  The log then has ``encoder_final``: every axis's ENC_COUNT.
 
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
@@ -70,6 +76,7 @@ from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQ
 from models.parameters import AXES, CLOCK_HZ, ParameterError
 from models.sim_machine import MachineConfig
 from sim.card.card_session import AccessError, CardSession
+from sim.card.encoder_pins import EncoderPins, parse_cue
 
 WORD = struct.Struct("<I")
 REQUEST = struct.Struct("<" + "I" * REQUEST_WORDS)
@@ -106,8 +113,19 @@ class CardServer:
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
-    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=()):
+    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=(), pins=None):
         self.session, self.clock_hz = session, clock_hz
+        self.pins = pins  # an EncoderPins: the encoder pins' cues, or None
+        if pins is not None:
+            # a cue due while a bus access runs the card clock by clock is taken at its clock too,
+            # not held back to the next ADVANCE (two edges of a walk would then meet in one clock)
+            edge = session.bench.clock_edge
+
+            def clock_edge(in_reset=False):
+                for _, name, level in pins.due(self.now()):
+                    session.set_input(name, level)
+                edge(in_reset)
+            session.bench.clock_edge = clock_edge
         self.estop = sorted(estop)   # card clocks the E-stop toggles at (pressed first)
         self.pressed = False
         self.ppm, self.ppm_fraction = ppm, 0
@@ -173,14 +191,26 @@ class CardServer:
             return after & 0xFFFFFFFF
         raise ProtocolError(f"unknown request {op}")
 
-    def _run_to(self, deadline):
-        """Run the card to clock ``deadline``, toggling the machine's E-stop at its clocks on the way."""
+    def _cues(self, deadline):
+        """(clock, what to do then) of the E-stop toggles and encoder pin changes up to ``deadline``, in order."""
+        cues = []
         while self.estop and self.estop[0] <= deadline:
-            at = self.estop.pop(0)
+            cues.append((self.estop.pop(0), self._toggle_estop))
+        for at, name, level in self.pins.due(deadline) if self.pins else ():
+            cues.append((at, lambda name=name, level=level: self.session.set_input(name, level)))
+        return sorted(cues, key=lambda cue: cue[0])
+
+    def _toggle_estop(self):
+        self.pressed = not self.pressed
+        self.session.machine.press_estop(self.pressed)
+
+    def _run_to(self, deadline):
+        """Run the card to clock ``deadline``, toggling the machine's E-stop and the encoder pins at
+        their clocks on the way."""
+        for at, act in self._cues(deadline):
             if at > self.now():
                 self.session.wait(at - self.now())
-            self.pressed = not self.pressed
-            self.session.machine.press_estop(self.pressed)
+            act()
         if deadline > self.now():
             self.session.wait(deadline - self.now())
 
@@ -237,6 +267,9 @@ class CardServer:
         self._sample_drive()
         self.free_run["end"] = self.now()
         self.final = {name: self.session.read(regmap.offset(name)) for name in FINAL_REGISTERS}
+        if self.pins is not None:
+            self.final["ENC_COUNT"] = [self.session.read(regmap.axis_offset("ENC_COUNT", axis))
+                                       for axis in range(self.pins.axes)]
 
     def record(self):
         """What the test compares: clocks are card clocks since the server opened the card."""
@@ -273,6 +306,13 @@ def main(argv=None):
                                           "(models.sim_machine.MachineConfig)")
     parser.add_argument("--estop", type=int, action="append", default=[], metavar="CLOCK",
                         help="toggle the simulated machine's E-stop at this card clock (repeatable; needs --machine)")
+    parser.add_argument("--encoders", action="store_true",
+                        help="the card is built with encoders (BUILD.ENCODERS; docs/encoders.md)")
+    parser.add_argument("--encoder-walk", action="append", default=[], metavar="AXIS@CLOCK:COUNTS",
+                        help="walk that axis's encoder by COUNTS counts from that card clock on (repeatable; "
+                             "needs --encoders)")
+    parser.add_argument("--index", action="append", default=[], metavar="AXIS@CLOCK:WIDTH",
+                        help="pulse that axis's index input high for WIDTH clocks (repeatable; needs --encoders)")
     args = parser.parse_args(argv)
     failure = None
     if args.fail is not None:
@@ -301,11 +341,25 @@ def main(argv=None):
         parser.error(f"--free-run must be 0..{MAX_FREE_RUN} clocks, not {args.free_run}")
     if not -MAX_PPM <= args.ppm <= MAX_PPM:
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
+    pins = None
+    if (args.encoder_walk or args.index) and not args.encoders:
+        parser.error("--encoder-walk and --index need --encoders: a card without encoders has no such pins")
+    if args.encoders:
+        pins = EncoderPins(args.axes)
+        try:
+            for axis, clock, counts in sorted((parse_cue(cue, args.axes) for cue in args.encoder_walk),
+                                              key=lambda cue: cue[1]):
+                pins.walk(axis, clock, counts)
+            for cue in args.index:
+                pins.pulse(*parse_cue(cue, args.axes))
+        except ValueError as error:
+            parser.error(str(error))
     if os.path.exists(args.socket):
         parser.error(f"{args.socket} exists: remove it or choose another path")
-    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine, axes=args.axes)
+    session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine, axes=args.axes,
+                          card_options=dict(encoders=int(args.encoders)))
     try:
-        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop)
+        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop, pins)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         listener.bind(args.socket)
         os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user

@@ -64,7 +64,7 @@ class CardSession:
     offsets beyond BAR0 (the per-axis register blocks) go through BAR2
     either way; ``axes``: the card's build (``--axes N``; the others of
     ``Build`` as by default); ``card_options``: more of ``CardUnderTest``'s
-    keywords (MyHDL: ``encoders``, ``pin_driver``).
+    keywords (``encoders``; MyHDL: ``pin_driver``).
 
     ``host`` (a ``PciMaster``), ``target`` (a ``CardUnderTest``: ``log``,
     ``io``, ``mem``, ``alias``), ``device`` (``PciDevice``), ``bars`` (by
@@ -84,7 +84,8 @@ class CardSession:
         options = dict(max_retries=RETRIES)
         options.update(host_options or {})
         if kind == "verilator":
-            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz, axes)
+            self._runner = _VerilatorRunner(self.target, fifo_depth, options, monitor, clock_hz, axes,
+                                            self.target.encoders)
             if machine is not None:
                 self._runner.card.start_machine(machine)
         else:
@@ -196,9 +197,10 @@ class CardSession:
         return bool(getattr(self.target.pins, name))
 
     def set_input(self, name, level):
-        """Set the machine input pin ``name`` (``estop``, ``limit_pos_z``, ...: ``MotorPins``) to
-        ``level``, taken by the next rising edge; a session with a simulated machine drives them itself."""
-        if self.machine is not None:
+        """Set the machine input pin ``name`` (``estop``, ``limit_pos_z``, ``enc_a_x``, ...: ``MotorPins``)
+        to ``level``, taken by the next rising edge; a session with a simulated machine drives its
+        switches and E-stop itself."""
+        if self.machine is not None and not name.startswith(("enc_", "probe")):
             raise RuntimeError("the simulated machine drives the input pins")
         if self.kind == "verilator":
             self._runner.card.model[f"pins_{name}"] = int(bool(level))
@@ -224,8 +226,8 @@ def _drive_pin(pin, level):
 
 
 class _VerilatorRunner:
-    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz, axes):
-        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz, axes), idsel_bit=16 + TARGET_DEVICE)
+    def __init__(self, target, fifo_depth, host_options, monitor, clock_hz, axes, encoders):
+        self.card = VerilatedCard(card_verilog(fifo_depth, clock_hz, axes, encoders), idsel_bit=16 + TARGET_DEVICE)
         self.bench = VerilatorBench(self.card, target, host_options=host_options, monitor=monitor)
         self.bench.start()
 
