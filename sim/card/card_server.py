@@ -1,7 +1,7 @@
 """The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
 
 ``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--free-run CLOCKS]
-[--ppm N] [--machine FILE [--estop CLOCK ...]] [--encoders [--encoder-walk CUE ...] [--index CUE ...]]``
+[--ppm N] [--machine FILE [--estop CLOCK ...]] [--encoders [--encoder-walk CUE ...] [--index CUE ...] [--probe CUE ...]]``
 opens ``CardSession("verilator", clock_hz=N, axes=N)`` (a card built to report N in
 CLOCK_HZ, of N axes; ``--encoders``: built with encoders), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
@@ -36,8 +36,8 @@ positions, the steps its drives lost (DRIVE_ENABLE low), its input pins.
 ``--encoder-walk AXIS@CLOCK:COUNTS`` (repeatable) walks that axis's encoder
 A/B by COUNTS counts from that card clock on, one legal step every
 ``encoder_pins.WALK_SPACING`` clocks; ``--index AXIS@CLOCK:WIDTH`` pulses its
-index high for WIDTH clocks (``sim/card/encoder_pins.py``; both need
-``--encoders``).  The log then has ``encoder_final``: every axis's ENC_COUNT.
+index high for WIDTH clocks, ``--probe CLOCK:WIDTH`` the card's probe input
+(``sim/card/encoder_pins.py``; all need ``--encoders``).  The log then has ``encoder_final``: every axis's ENC_COUNT.
 
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
@@ -76,7 +76,7 @@ from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQ
 from models.parameters import AXES, CLOCK_HZ, ParameterError
 from models.sim_machine import MachineConfig
 from sim.card.card_session import AccessError, CardSession
-from sim.card.encoder_pins import EncoderPins, parse_cue
+from sim.card.encoder_pins import EncoderPins, parse_cue, parse_probe
 
 WORD = struct.Struct("<I")
 REQUEST = struct.Struct("<" + "I" * REQUEST_WORDS)
@@ -313,6 +313,8 @@ def main(argv=None):
                              "needs --encoders)")
     parser.add_argument("--index", action="append", default=[], metavar="AXIS@CLOCK:WIDTH",
                         help="pulse that axis's index input high for WIDTH clocks (repeatable; needs --encoders)")
+    parser.add_argument("--probe", action="append", default=[], metavar="CLOCK:WIDTH",
+                        help="pulse the card's probe input high for WIDTH clocks (repeatable; needs --encoders)")
     args = parser.parse_args(argv)
     failure = None
     if args.fail is not None:
@@ -342,8 +344,8 @@ def main(argv=None):
     if not -MAX_PPM <= args.ppm <= MAX_PPM:
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
     pins = None
-    if (args.encoder_walk or args.index) and not args.encoders:
-        parser.error("--encoder-walk and --index need --encoders: a card without encoders has no such pins")
+    if (args.encoder_walk or args.index or args.probe) and not args.encoders:
+        parser.error("--encoder-walk, --index and --probe need --encoders: a card without encoders has no such pins")
     if args.encoders:
         pins = EncoderPins(args.axes)
         try:
@@ -352,6 +354,8 @@ def main(argv=None):
                 pins.walk(axis, clock, counts)
             for cue in args.index:
                 pins.pulse(*parse_cue(cue, args.axes))
+            for cue in args.probe:
+                pins.probe(*parse_probe(cue))
         except ValueError as error:
             parser.error(str(error))
     if os.path.exists(args.socket):

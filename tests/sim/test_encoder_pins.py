@@ -3,7 +3,7 @@
 import pytest
 
 from models.encoder_model import FILTER_MAX, EncoderModel
-from sim.card.encoder_pins import WALK_SPACING, EncoderPins, parse_cue
+from sim.card.encoder_pins import WALK_SPACING, EncoderPins, parse_cue, parse_probe
 
 
 def play(pins, axis, clocks, model, arm_at=None):
@@ -60,3 +60,12 @@ def test_a_cue_read():
     assert parse_cue("1@2500:-300", 3) == (1, 2500, -300)
     with pytest.raises(ValueError, match="index pulse of 0 clocks"):
         EncoderPins(1).pulse(0, 10, 0)
+
+
+def test_a_probe_cue():
+    pins = EncoderPins(1)
+    pins.probe(100, 3)
+    assert pins.due(1000) == [(100, "probe", 1), (103, "probe", 0)]
+    assert parse_probe("100:3") == (100, 3)
+    with pytest.raises(ValueError, match="not CLOCK:WIDTH"):
+        parse_probe("100")
