@@ -14,8 +14,9 @@
  * is armed.  `count` is the unwrapped count less `zero`: the count at the
  * last `reset` or index; the card's count itself runs on (rawcounts), so its
  * following error keeps its alignment.  Each `write`: ENC_CONTROL when
- * counter-mode, filter or index-invert changed or index-enable arms it,
- * PROBE_CONTROL when a probe-enable arms it.
+ * counter-mode, filter or index-invert changed, or (in a later period: a
+ * polarity change is an index edge) when index-enable arms it, PROBE_CONTROL
+ * when a probe-enable arms it.
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
  */
@@ -99,6 +100,7 @@ static int dda_export_encoders(int comp_id, struct card *c)
         e->time = time;
         e->control = ~0u;  /* written at the first `write` */
     }
+    c->probe_control = ~0u;
     return r ? -EINVAL : 0;
 }
 
@@ -269,7 +271,7 @@ static int dda_read_encoders(struct card *c)
 /* `write`'s part: ENC_CONTROL and PROBE_CONTROL when a parameter changed or an enable arms. */
 static void dda_write_encoders(struct card *c)
 {
-    uint32_t probe = PROBE_FILTER << DDA_PROBE_CONTROL_FILTER_SHIFT | DDA_PROBE_CONTROL_ARM_MASK;
+    uint32_t probe = PROBE_FILTER << DDA_PROBE_CONTROL_FILTER_SHIFT | (c->probe_invert ? 0 : DDA_PROBE_CONTROL_INVERT_MASK);
     int i, probing = 0;
     if (!c->encoders)
         return;
@@ -280,19 +282,26 @@ static void dda_write_encoders(struct card *c)
         if (!*e->index_enable)
             e->armed = 0;  /* given up before the index came: its latch is not taken */
         probing |= *e->probe_enable != 0;
-        if ((control != e->control || arm)
-            && dda_write32(&c->transport, DDA_AXIS_ENC_CONTROL_OFFSET(i),
-                           control | (arm ? DDA_AXIS_ENC_CONTROL_INDEX_ARM_MASK : 0)) == 0) {
-            e->control = control;
-            e->armed |= arm;
+        if (control != e->control) {
+            /* a new index polarity flips the filtered index: an edge the latch must not take,
+             * so the arm waits for the next period (the edge has passed the filter by then) */
+            if (dda_write32(&c->transport, DDA_AXIS_ENC_CONTROL_OFFSET(i), control) == 0)
+                e->control = control;
+        } else if (arm && dda_write32(&c->transport, DDA_AXIS_ENC_CONTROL_OFFSET(i),
+                                      control | DDA_AXIS_ENC_CONTROL_INDEX_ARM_MASK) == 0) {
+            e->armed = 1;
         }
     }
     if (!probing)
         c->probe_armed = 0;
-    else if (!c->probe_armed
-             && dda_write32(&c->transport, DDA_PROBE_CONTROL,
-                            probe | (c->probe_invert ? 0 : DDA_PROBE_CONTROL_INVERT_MASK)) == 0)
+    if (probe != c->probe_control) {
+        /* as the index: the arm waits a period after a polarity change */
+        if (dda_write32(&c->transport, DDA_PROBE_CONTROL, probe) == 0)
+            c->probe_control = probe;
+    } else if (probing && !c->probe_armed
+               && dda_write32(&c->transport, DDA_PROBE_CONTROL, probe | DDA_PROBE_CONTROL_ARM_MASK) == 0) {
         c->probe_armed = 1;
+    }
 }
 
 #endif /* DDA_ENCODER_H */

@@ -93,6 +93,7 @@ struct card {
     struct encoder encoder[DDA_AXES_MAX];
     hal_bit_t probe_invert;        /* encoder.probe-invert: 1 the probe's rising edge latches, 0 its falling */
     int probe_armed;               /* PROBE_CONTROL.ARM written for probe-enable, not yet seen to fire */
+    uint32_t probe_control;        /* PROBE_CONTROL as last written, ARM aside; ~0: not yet */
     unsigned quad_axis;            /* the axis whose ENC_STATUS this period reads (one a period, in turn) */
     hal_s32_t *stop_reason;        /* STOP_REASON.REASON: why the card holds itself stopped */
     hal_bit_t *watchdog_has_bit;   /* the card's watchdog stopped it; written false to go on */

@@ -6,12 +6,12 @@ Golden values come from the cues (counts walked, the walk's edge spacing, the in
 the driver: a walk of N counts one edge every WALK_SPACING clocks is N counts at
 CLOCK_HZ / WALK_SPACING counts per second.  docs/linuxcnc.md, "Encoders".
 """
-import re
 import shutil
 from collections import Counter
 
 import pytest
 
+from models import registers as regmap
 from sim.card.encoder_pins import WALK_SPACING
 from tests.linuxcnc.halrun import note, run_halrun, until
 from tests.linuxcnc.session import CLOCK_HZ, PERIOD_CLOCKS, missing, run_folder
@@ -40,9 +40,10 @@ BACK = -200            # then back
 AFTER_INDEX = 100      # counts walked after the index
 Y_WALK = -300          # Y, at scale 0 (forced to 1)
 CUES = {  # card clocks (1 MHz: microseconds since the card server opened the card)
-    "fast": 100_000, "y walk": 200_000, "stray index": 215_000, "back": 220_000, "arm after": 230_000,
-    "probe": 245_000, "index": 260_000, "after index": 300_000,
+    "fast": 100_000, "y walk": 200_000, "stray index": 215_000, "arm after": 230_000, "back": 260_000,
+    "probe": 280_000, "index": 300_000, "after index": 340_000,
 }
+X_FERROR = 0.5         # X's following-error limit (position units): 50 counts at scale 100
 VEL_TIMEOUT = 0.05     # s: the velocity falls to 0 this long after the last count
 INDEX_WIDTH = 50       # clocks the index pulses stay high
 
@@ -64,9 +65,10 @@ SCRIPT = (
     + f"loadusr -w ./atleast.sh {E}.00.count {FAST // 4}\n" + note(f"{E}.00.velocity", f"{E}.00.count")
     + until(f"{E}.00.count", str(FAST)) + until(f"{E}.01.count", str(Y_WALK))
     + note(f"{E}.00.position", f"{E}.01.position", f"{E}.01.scale")
-    # the stray index pulse (not armed) and the walk back: no latch, the count runs on
+    # the stray index pulse (not armed): no latch
     + f"loadusr -w ./atleast.sh dda-card.0.clock {CUES['arm after']}\n" + note(f"{E}.00.count")
-    # the probe armed for X and Z: each one's count at the probe edge, probe-enable falls
+    # the probe armed for X and Z (before the walk back): each one's count at the probe edge,
+    # probe-enable falls
     + f"setp {E}.00.probe-enable 1\nsetp {E}.02.probe-enable 1\n" + until(f"{E}.00.probe-enable", "FALSE")
     + note(f"{E}.00.count-latched", f"{E}.00.position-latched", f"{E}.02.probe-enable", f"{E}.02.count-latched",
            f"{E}.01.count-latched")
@@ -79,6 +81,9 @@ SCRIPT = (
     + note(f"{E}.00.count", f"{E}.00.position", f"{E}.00.rawcounts")
     # long after the walks: the velocity fell to 0 (vel-timeout)
     + until(f"{E}.00.velocity", "0") + note(f"{E}.00.velocity")
+    # the card's following error set at enable: X's written, Z's scale of the other sign refused (-8)
+    + f"setp {E}.00.ferror-limit {X_FERROR}\nsetp {E}.02.scale -400\nsetp {E}.02.ferror-limit 0.1\n"
+    + f"setp dda-card.0.stepgen.00.enable 1\n" + until("dda-card.0.error", "TRUE") + note("dda-card.0.error-code")
 )
 
 
@@ -88,6 +93,8 @@ def _pins(path):
             if len(fields) >= 4 and fields[-1].startswith("dda-card.")}
 
 
+@pytest.mark.slow(reason="two card servers and 0.35 s of card time in lock-step: 25 to 50 s here; "
+                         "test_encoder_index_handshake covers the pins and the index in the default set")
 def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     """A 3-axis card with encoders and a 2-axis card without, under one driver: hostmot2's encoder
     pins and parameters on every axis of the first only, and the inputs of Z on the first only;
@@ -96,7 +103,8 @@ def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     counts per period alternate 33 / 34; probe-enable on two axes latches each one's count at the
     probe's edge; an index pulse while index-enable is FALSE latches nothing;
     armed, the next index zeroes count at the index and drops index-enable, the card's own count
-    (rawcounts) running on; reset holds count at 0."""
+    (rawcounts) running on; reset holds count at 0; at enable the card's following error is set
+    from the scales and ferror-limit, a ratio of the wrong sign refused."""
     run = run_folder()
     for name, text in (("atleast.sh", ATLEAST), ("show.sh", SHOW)):
         (run / name).write_text(text)
@@ -124,9 +132,9 @@ def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     assert float(notes[f"{E}.00.velocity"][0]) == pytest.approx(velocity, rel=1e-6)
     # (counts per period over the period would read 33 or 34 counts a period here, never 33.33)
     assert {PERIOD_CLOCKS * k // WALK_SPACING - PERIOD_CLOCKS * (k - 1) // WALK_SPACING for k in range(1, 31)} == {33, 34}
-    # the stray index did nothing: after the walk back the count is the walks' sum
-    assert notes[f"{E}.00.count"][1] == str(FAST + BACK)
-    # the probe: X's count there (before the index), Z's 0; Y's not asked for
+    # the stray index did nothing
+    assert notes[f"{E}.00.count"][1] == str(FAST)
+    # the probe: X's count there (after the walk back, before the index), Z's 0; Y's not asked for
     assert notes[f"{E}.00.count-latched"] == [str(FAST + BACK)]
     assert float(notes[f"{E}.00.position-latched"][0]) == (FAST + BACK) / X_SCALE
     assert notes[f"{E}.02.probe-enable"] == ["FALSE"] and notes[f"{E}.02.count-latched"] == ["0"]
@@ -141,7 +149,45 @@ def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     assert notes[f"{E}.00.rawcounts"][2] == str(FAST + BACK + AFTER_INDEX)
     assert notes[f"{E}.00.velocity"][1] == "0"
     assert records["card0"]["final"]["ENC_COUNT"][:2] == [FAST + BACK + AFTER_INDEX, Y_WALK & 0xFFFFFFFF]
+    # the following error: X's ratio (100 counts per step at position-scale 1, 16.16) and limit written,
+    # Z's refused naming its values
+    writes = {(offset, value) for _, offset, value in records["card0"]["writes"]}
+    assert (regmap.axis_offset("ENC_SCALE", 0), round(X_SCALE * 65536)) in writes
+    assert (regmap.axis_offset("FERROR_LIMIT", 0), round(X_FERROR * X_SCALE)) in writes
+    assert notes["dda-card.0.error-code"] == ["-8"] and "encoder.02: scale -400 over the stepgen's" in output
+    assert not any(offset == regmap.axis_offset("ENC_SCALE", 2) for offset, _ in writes)
     # what reading the encoders costs: the requests of a period on each card (READs, WRITEs, FIFO, ADVANCE)
     requests = {name: Counter(record["requests"][50:]).most_common(1)[0][0] for name, record in records.items()}
     print(f"\nrequests a period, idle: {requests} (card0: 3 axes with encoders; card1: 2 axes without)")
+    shutil.rmtree(run, ignore_errors=True)
+
+
+ONE_CARD = """loadrt threads name1=servo-thread period1=1000000
+loadrt dda_card sim={run}/card.sock
+addf dda-card.0.read servo-thread
+addf dda-card.0.write servo-thread
+start
+"""
+SHORT_WALK = 40        # counts walked on Y before its index
+SHORT_CUES = {"walk": 20_000, "index": 30_000}
+
+
+def test_encoder_index_handshake(linuxcnc_alone):
+    """The default set's look at the encoders (the slow test above has the rest): on a 2-axis card
+    with encoders, an encoder per axis and no input of Z; Y's walk read as its count; index-enable
+    set, the next index zeroes count there and index-enable falls."""
+    run = run_folder()
+    (run / "atleast.sh").write_text(ATLEAST)
+    (run / "atleast.sh").chmod(0o755)
+    script = ONE_CARD.format(run=run) + (
+        f"setp {E}.01.index-enable 1\nloadusr -w ./atleast.sh dda-card.0.clock {SHORT_CUES['walk']}\n"
+        + note(f"{E}.01.index-enable") + until(f"{E}.01.index-enable", "FALSE")
+        + note(f"{E}.01.count", f"{E}.01.rawcounts", f"{E}.00.count"))
+    options = ("--encoders", "--encoder-walk", f"1@{SHORT_CUES['walk']}:{SHORT_WALK}",
+               "--index", f"1@{SHORT_CUES['index']}:{INDEX_WIDTH}")
+    output, notes, records = run_halrun(run, script, {"card": options})
+    assert notes[f"{E}.01.index-enable"] == ["TRUE"], "index-enable fell before the index"
+    assert notes[f"{E}.01.count"] == ["0"] and notes[f"{E}.01.rawcounts"] == [str(SHORT_WALK)]
+    assert notes[f"{E}.00.count"] == ["0"] and f"{E}.02." not in output
+    assert records["card"]["final"]["ENC_COUNT"] == [0, SHORT_WALK]
     shutil.rmtree(run, ignore_errors=True)
