@@ -191,3 +191,36 @@ def test_encoder_index_handshake(linuxcnc_alone):
     assert notes[f"{E}.00.count"] == ["0"] and f"{E}.02." not in output
     assert records["card"]["final"]["ENC_COUNT"] == [0, SHORT_WALK]
     shutil.rmtree(run, ignore_errors=True)
+
+
+FE_STEP_SCALE = 100.0      # steps per unit (stepgen.00.position-scale)
+FE_ENCODER_SCALE = 400.0   # counts per unit: 4 counts a step
+FE_LIMIT = 0.2             # units: 80 counts, 20 steps
+# 8 + 8 clocks a step at 1 MHz (p = 16): the card's stop, 3 clocks after the step that crossed the
+# limit (docs/encoders.md: 2 to the flag, 1 to the guard), comes before the next step
+FE_STEP_NS = 8000
+
+
+def test_the_cards_following_error_stop_reaches_the_driver(linuxcnc_alone):
+    """No motor turns X's encoder (a motor stalled from the start): X commanded 0.5 unit (50 steps, in one period),
+    the card's following error passes ferror-limit (80 counts: 20 steps) and the card stops itself
+    (STOP_REASON FOLLOWING_ERROR, axis 0): the driver's error -3 and stop-reason 4, the axis named,
+    the steps made the limit's and the one that crossed it, not one more."""
+    run = run_folder()
+    script = ONE_CARD.format(run=run) + (
+        f"setp dda-card.0.stepgen.00.position-scale {FE_STEP_SCALE}\nsetp {E}.00.scale {FE_ENCODER_SCALE}\n"
+        f"setp {E}.00.ferror-limit {FE_LIMIT}\nsetp dda-card.0.stepgen.00.steplen {FE_STEP_NS}\n"
+        f"setp dda-card.0.stepgen.00.stepspace {FE_STEP_NS}\n"
+        f"setp dda-card.0.stepgen.00.enable 1\nsetp dda-card.0.drive-enable 1\n"
+        + until("dda-card.0.fifo-level", "not:0") + "setp dda-card.0.stepgen.00.position-cmd 0.5\n"
+        + until("dda-card.0.error", "TRUE") + note("dda-card.0.error-code", "dda-card.0.stop-reason"))
+    output, notes, records = run_halrun(run, script, {"card": ("--encoders",)})
+    record = records["card"]
+    assert notes["dda-card.0.error-code"] == ["-3"] and notes["dda-card.0.stop-reason"] == ["4"]
+    assert "a following error beyond FERROR_LIMIT" in output and "(STOP_REASON.AXIS 0)" in output
+    stop, reason = record["final"]["STOP_REASON"], regmap.register("STOP_REASON")
+    assert (stop & reason.field("REASON").mask) >> reason.field("REASON").lsb == regmap.STOP_REASONS.index("FOLLOWING_ERROR")
+    assert (stop & reason.field("AXIS").mask) >> reason.field("AXIS").lsb == 0
+    limit_steps = FE_LIMIT * FE_ENCODER_SCALE / (FE_ENCODER_SCALE / FE_STEP_SCALE)
+    assert record["final"]["POS_X"] == limit_steps + 1, record["final"]
+    shutil.rmtree(run, ignore_errors=True)
