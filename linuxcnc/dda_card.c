@@ -32,9 +32,11 @@
  * while the queue runs, every period rewrites WATCHDOG with
  * `watchdog.timeout_ns` in card clocks, so a PC that stops driving the card
  * has it stop on its own within that time.  `input.<name>` (estop,
- * limit-pos-x .. limit-neg-y, home-x, home-y) are the card's filtered
- * inputs (MACHINE_STATUS.ACTIVE), read every period: LinuxCNC's home-sw-in
- * and limit pins take them.  A watchdog stop sets
+ * limit-pos-x .. home-y, and limit-pos-z .. home-z and on of each further
+ * axis) are the card's filtered inputs (INPUT_ACTIVE), read every period:
+ * LinuxCNC's home-sw-in and limit pins take them.  On a card built with
+ * encoders, `encoder.NN.*` are hostmot2's encoder pins (dda_encoder.h), and
+ * its following-error stop is set at enable.  A watchdog stop sets
  * `watchdog.has_bit`, which holds the card stopped (and `error` high) until
  * it is written false.  Each period's DWELL is trimmed from the FIFO level
  * so that the card's crystal, some ppm off the PC's timer, neither drains
@@ -52,6 +54,7 @@
 #include "dda_axis.h"
 #include "dda_drift.h"
 #include "dda_cards.h"
+#include "dda_encoder.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
@@ -107,19 +110,20 @@ static void card_stopped(struct card *c, int stopping)
     if (*c->stop_reason == DDA_STOP_WATCHDOG)
         *c->watchdog_has_bit = 1;
     stop(c, FAULT_CARD_STOPPED);
-    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped the machine: %s\n", c->transport.name,
-                    reason_name(*c->stop_reason));
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped the machine: %s (STOP_REASON.AXIS %u)\n",
+                    c->transport.name, reason_name(*c->stop_reason), (unsigned)FIELD(why, DDA_STOP_REASON_AXIS));
 }
 
 static void read_card(void *arg, long period)
 {
     struct card *c = arg;
-    uint32_t raw[DDA_AXES_MAX], status = 0, machine = 0;
+    uint32_t raw[DDA_AXES_MAX], status = 0, active = 0;
     int i = 0, level;
     while (i < c->axes && dda_read32(&c->transport, pos_reg(i), &raw[i]) == 0)
         i++;
     if (i < c->axes || dda_read32(&c->transport, DDA_STATUS, &status) < 0
-        || dda_read32(&c->transport, DDA_MACHINE_STATUS, &machine) < 0) {
+        || dda_read32(&c->transport, DDA_INPUT_ACTIVE, &active) < 0
+        || (!card_gone(c, status) && dda_read_encoders(c) < 0)) {
         if (!*c->error || *c->error_code != FAULT_TRANSPORT)
             stop(c, FAULT_TRANSPORT);  /* position-fb keeps its last good value */
         return;
@@ -137,9 +141,9 @@ static void read_card(void *arg, long period)
     level = (int32_t)FIELD(status, DDA_STATUS_FIFO_LEVEL);
     *c->fifo_level = level;
     c->room = (uint32_t)level < c->fifo_size ? c->fifo_size - (uint32_t)level : 0;
-    *c->estop_active = (FIELD(machine, DDA_MACHINE_STATUS_ACTIVE) & DDA_INPUT_POLARITY_ESTOP_MASK) != 0;
-    for (i = 0; i < DDA_INPUTS; i++)
-        *c->inputs[i] = (FIELD(machine, DDA_MACHINE_STATUS_ACTIVE) >> i) & 1;
+    *c->estop_active = (active & DDA_INPUT_ACTIVE_ESTOP_MASK) != 0;
+    for (i = 0; i < c->inputs_count; i++)
+        *c->inputs[i] = (active >> i) & 1;
     if (c->running)
         trim_drift(c, level);
     if (status & DDA_STATUS_STOPPED_MASK)
@@ -189,6 +193,8 @@ static int start(struct card *c)
     uint32_t status = 0, *t = c->timing_clocks;
     unsigned n = 0;
     int i, problem = dda_check_settings(c);
+    if (!problem)
+        problem = dda_align_encoders(c);  /* re-aligns the following error: before CLEAR_STOP */
     if (problem)
         return problem;
     /* release a stop of the card's own; it holds while its E-stop input is active */
@@ -329,6 +335,7 @@ static void write_card(void *arg, long period)
         if (fault)
             stop(c, fault);
     }
+    dda_write_encoders(c);
     if (dda_advance(&c->transport, clocks, &now) < 0 && *c->error_code != FAULT_TRANSPORT)
         stop(c, FAULT_TRANSPORT);
     *c->clock = now;
@@ -346,7 +353,7 @@ static int export_cards(void)
 {
     int k;
     for (k = 0; k < card_count; k++)
-        if (dda_export_card(comp_id, cards[k]) < 0
+        if (dda_export_card(comp_id, cards[k]) < 0 || (cards[k]->encoders && dda_export_encoders(comp_id, cards[k]) < 0)
             || export_funct(read_card, k, "read") < 0 || export_funct(write_card, k, "write") < 0)
             return -EINVAL;
     return 0;

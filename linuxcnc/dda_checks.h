@@ -64,6 +64,14 @@ static int dda_check_card(struct card *c, int keep_ahead)
                         "docs/linuxcnc.md\n", t->name, c->axes, BAR0_AXES);
         return -ENODEV;
     }
+    c->inputs_count = 1 + 3 * c->axes;
+    c->encoders = FIELD(build, DDA_BUILD_ENCODERS) != 0;
+    if (c->encoders && t->sock < 0 && !t->regs) {
+        /* the encoders' registers are in the per-axis blocks: BAR2 only */
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s has encoders (BUILD.ENCODERS), whose registers are in BAR2, "
+                        "which this host does not map: no encoder pins (docs/linuxcnc.md)\n", t->name);
+        c->encoders = 0;
+    }
     /* LINE's AXES = 0 is X and Y (the form every card takes); more axes are named */
     c->line_axes = c->axes == 2 ? 0u : (1u << c->axes) - 1u;
     c->burst_words = (c->axes == 2 ? DDA_CMD_LINE_WORDS : 1u + (unsigned)c->axes) + DDA_CMD_DWELL_WORDS;

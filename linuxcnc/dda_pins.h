@@ -10,9 +10,12 @@
 #include "dda_state.h"
 
 static const char *const TIMING_NAMES[TIMINGS] = {"steplen", "stepspace", "dirsetup", "dirhold"};
-/* the input.<name> pins, bit n of MACHINE_STATUS.ACTIVE (INPUT_POLARITY's order) */
-static const char *const INPUT_PINS[DDA_INPUTS] = {"estop", "limit-pos-x", "limit-neg-x", "limit-pos-y",
-                                                   "limit-neg-y", "home-x", "home-y"};
+/* the input.<name> pins, bit n of INPUT_ACTIVE (INPUT_POLARITY's order): E-stop, X's and Y's, then
+ * each further axis's three; a card of N axes has the first 1 + 3 N */
+static const char *const INPUT_PINS[DDA_INPUTS_MAX] = {
+    "estop", "limit-pos-x", "limit-neg-x", "limit-pos-y", "limit-neg-y", "home-x", "home-y",
+    "limit-pos-z", "limit-neg-z", "home-z", "limit-pos-a", "limit-neg-a", "home-a",
+    "limit-pos-b", "limit-neg-b", "home-b", "limit-pos-c", "limit-neg-c", "home-c"};
 
 static int dda_export_axis(int comp_id, struct stepgen *s, int card, int i)
 {
@@ -57,7 +60,7 @@ static int dda_export_card(int comp_id, struct card *c)
     r |= hal_pin_bit_newf(HAL_IN, &c->estop_in, comp_id, "%s.estop-in", p);
     r |= hal_pin_bit_newf(HAL_IN, &c->drive_enable, comp_id, "%s.drive-enable", p);
     r |= hal_pin_bit_newf(HAL_OUT, &c->estop_active, comp_id, "%s.estop-active", p);
-    for (i = 0; i < DDA_INPUTS; i++)
+    for (i = 0; i < c->inputs_count; i++)
         r |= hal_pin_bit_newf(HAL_OUT, &c->inputs[i], comp_id, "%s.input.%s", p, INPUT_PINS[i]);
     r |= hal_pin_s32_newf(HAL_OUT, &c->stop_reason, comp_id, "%s.stop-reason", p);
     r |= hal_pin_bit_newf(HAL_IO, &c->watchdog_has_bit, comp_id, "%s.watchdog.has_bit", p);

@@ -13,7 +13,7 @@
 #define CARDS_MAX 4          /* cards one driver serves: dda-card.0 .. dda-card.3 */
 #define TRIM_RING 64         /* periods of FIFO words remembered: more than keep_ahead can be */
 #define TRIM_SHIFT 8         /* the drift loop's step: a period's clocks / 256 (at least 1) */
-#define DDA_INPUTS 7         /* MACHINE_STATUS.ACTIVE's bits: E-stop, limits, home switches */
+#define DDA_INPUTS_MAX (1 + 3 * (int)DDA_AXES_MAX) /* INPUT_ACTIVE's bits: E-stop, each axis's limits and home */
 #define START_WORDS (6 * DDA_CMD_SET_WORDS) /* the SETs of a start, at most */
 #define PERIOD_WORDS (DDA_CMD_LINE_MAX_WORDS + DDA_CMD_DWELL_WORDS) /* a period's burst on any card, at most */
 
@@ -58,6 +58,21 @@ struct stepgen {
     int dir;                       /* its DIR level: 1 forward, 0 backward, -1 not known (after load) */
 };
 
+/* hostmot2's encoder of one axis on a card built with encoders (dda_encoder.h) */
+struct encoder {
+    hal_s32_t *count, *rawcounts, *count_latched;
+    hal_float_t *position, *velocity, *position_latched;
+    hal_bit_t *reset, *index_enable, *probe_enable, *quad_error, *quad_error_enable;
+    hal_float_t scale, vel_timeout, ferror_limit;
+    hal_bit_t filter, counter_mode, index_invert;
+    int64_t raw;                   /* ENC_COUNT unwrapped into 64 bits (last good read) */
+    int64_t zero;                  /* the unwrapped count at which `count` reads 0 (reset, index) */
+    uint32_t time;                 /* ENC_TIME at the last read */
+    double rate;                   /* counts per second at the last read */
+    uint32_t control;              /* ENC_CONTROL as last written, INDEX_ARM aside; ~0: not yet */
+    int armed;                     /* the index latch armed for index-enable, not yet seen to fire */
+};
+
 struct card {
     int index;                     /* K of dda-card.K: its place in the card list */
     int axes;                      /* BUILD.AXES: stepgen.00 .. stepgen.(axes - 1) */
@@ -72,7 +87,14 @@ struct card {
     hal_bit_t *estop_in;           /* low: the queue stops (LinuxCNC's E-stop chain) */
     hal_bit_t *drive_enable;       /* MACHINE_CONTROL.DRIVE_ENABLE */
     hal_bit_t *estop_active;       /* the card's E-stop input (MACHINE_STATUS.ACTIVE) */
-    hal_bit_t *inputs[DDA_INPUTS]; /* the card's filtered inputs (MACHINE_STATUS.ACTIVE): input.<name> */
+    int inputs_count;              /* 1 + 3 * axes: INPUT_ACTIVE's bits of this card */
+    hal_bit_t *inputs[DDA_INPUTS_MAX]; /* the card's filtered inputs (INPUT_ACTIVE): input.<name> */
+    int encoders;                  /* BUILD.ENCODERS: encoder.NN per axis (dda_encoder.h) */
+    struct encoder encoder[DDA_AXES_MAX];
+    hal_bit_t probe_invert;        /* encoder.probe-invert: 1 the probe's rising edge latches, 0 its falling */
+    int probe_armed;               /* PROBE_CONTROL.ARM written for probe-enable, not yet seen to fire */
+    uint32_t probe_control;        /* PROBE_CONTROL as last written, ARM aside; ~0: not yet */
+    unsigned quad_axis;            /* the axis whose ENC_STATUS this period reads (one a period, in turn) */
     hal_s32_t *stop_reason;        /* STOP_REASON.REASON: why the card holds itself stopped */
     hal_bit_t *watchdog_has_bit;   /* the card's watchdog stopped it; written false to go on */
     hal_u32_t watchdog_timeout_ns;

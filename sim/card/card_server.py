@@ -1,7 +1,8 @@
 """The simulated card served on a Unix socket, for the LinuxCNC driver's tests.
 
 ``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--encoders]
-[--free-run CLOCKS] [--ppm N] [--machine FILE [--estop CLOCK ...] [--stall AXIS@CLOCK ...]]``
+[--free-run CLOCKS] [--ppm N] [--machine FILE [--estop CLOCK ...] [--stall AXIS@CLOCK ...]]
+[--encoder-walk CUE ...] [--index CUE ...] [--probe CUE ...]``
 opens ``CardSession("verilator", clock_hz=N, axes=N, encoders=...)`` (a card built to report N in
 CLOCK_HZ, of N axes, with encoder inputs with ``--encoders``), listens on PATH, serves one client and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
@@ -36,6 +37,12 @@ that card clock on, each inside an ADVANCE if one spans it.  The log then has
 ``machine``: the machine's positions, the steps it lost (DRIVE_ENABLE low, or
 a stalled motor), its input pins, the motors' encoder counts (None without a
 motor).
+
+``--encoder-walk AXIS@CLOCK:COUNTS`` (repeatable) walks that axis's encoder
+A/B by COUNTS counts from that card clock on, one legal step every
+``encoder_pins.WALK_SPACING`` clocks; ``--index AXIS@CLOCK:WIDTH`` pulses its
+index high for WIDTH clocks, ``--probe CLOCK:WIDTH`` the card's probe input
+(``sim/card/encoder_pins.py``; all need ``--encoders``).  The log then has ``encoder_final``: every axis's ENC_COUNT.
 
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
@@ -74,6 +81,7 @@ from models.card_socket import ADVANCE, ANSWER_WORDS, FIFO, MAX_BURST, READ, REQ
 from models.parameters import AXES, CLOCK_HZ, ParameterError
 from models.sim_machine import MOTOR_AXES, MachineConfig
 from sim.card.card_session import AccessError, CardSession
+from sim.card.encoder_pins import EncoderPins, parse_cue, parse_probe
 
 WORD = struct.Struct("<I")
 REQUEST = struct.Struct("<" + "I" * REQUEST_WORDS)
@@ -110,10 +118,21 @@ class CardServer:
     (clock, DRIVE_ENABLE level) at every change, ``free_run`` and ``final``
     once ``finish`` has run."""
 
-    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=(), stalls=()):
+    def __init__(self, session, clock_hz, ppm=0, failure=None, estop=(), stalls=(), pins=None):
         self.session, self.clock_hz = session, clock_hz
         # (card clock, axis): the E-stop toggles at its clocks (pressed first, axis None), a motor stalls
         self.events = sorted([(clock, None) for clock in estop] + list(stalls), key=lambda e: (e[0], e[1] or 0))
+        self.pins = pins  # an EncoderPins: the encoder pins' cues, or None
+        if pins is not None:
+            # a cue due while a bus access runs the card clock by clock is taken at its clock too,
+            # not held back to the next ADVANCE (two edges of a walk would then meet in one clock)
+            edge = session.bench.clock_edge
+
+            def clock_edge(in_reset=False):
+                for _, name, level in pins.due(self.now()):
+                    session.set_input(name, level)
+                edge(in_reset)
+            session.bench.clock_edge = clock_edge
         self.pressed = False
         self.ppm, self.ppm_fraction = ppm, 0
         self.failure = failure  # (kind, after how many ADVANCEs) or None
@@ -178,18 +197,28 @@ class CardServer:
             return after & 0xFFFFFFFF
         raise ProtocolError(f"unknown request {op}")
 
-    def _run_to(self, deadline):
-        """Run the card to clock ``deadline``, toggling the machine's E-stop and stalling its motors at
-        their clocks on the way."""
+    def _cues(self, deadline):
+        """(clock, what to do then) of the E-stop toggles, the motors' stalls and the encoder pin changes
+        up to ``deadline``, in order."""
+        cues = []
         while self.events and self.events[0][0] <= deadline:
             at, axis = self.events.pop(0)
+            cues.append((at, self._toggle_estop if axis is None else lambda axis=axis: self.session.machine.stall(axis)))
+        for at, name, level in self.pins.due(deadline) if self.pins else ():
+            cues.append((at, lambda name=name, level=level: self.session.set_input(name, level)))
+        return sorted(cues, key=lambda cue: cue[0])
+
+    def _toggle_estop(self):
+        self.pressed = not self.pressed
+        self.session.machine.press_estop(self.pressed)
+
+    def _run_to(self, deadline):
+        """Run the card to clock ``deadline``, toggling the machine's E-stop, stalling its motors and
+        changing the encoder pins at their clocks on the way."""
+        for at, act in self._cues(deadline):
             if at > self.now():
                 self.session.wait(at - self.now())
-            if axis is None:
-                self.pressed = not self.pressed
-                self.session.machine.press_estop(self.pressed)
-            else:
-                self.session.machine.stall(axis)
+            act()
         if deadline > self.now():
             self.session.wait(deadline - self.now())
 
@@ -246,6 +275,9 @@ class CardServer:
         self._sample_drive()
         self.free_run["end"] = self.now()
         self.final = {name: self.session.read(regmap.offset(name)) for name in FINAL_REGISTERS}
+        if self.pins is not None:
+            self.final["ENC_COUNT"] = [self.session.read(regmap.axis_offset("ENC_COUNT", axis))
+                                       for axis in range(self.pins.axes)]
 
     def record(self):
         """What the test compares: clocks are card clocks since the server opened the card."""
@@ -297,6 +329,13 @@ def main(argv=None):
     parser.add_argument("--stall", action="append", default=[], metavar="AXIS@CLOCK",
                         help="stall the simulated machine's motor of AXIS (X, Y) from this card clock on "
                              "(repeatable; needs a motor on AXIS in --machine)")
+    parser.add_argument("--encoder-walk", action="append", default=[], metavar="AXIS@CLOCK:COUNTS",
+                        help="walk that axis's encoder by COUNTS counts from that card clock on (repeatable; "
+                             "needs --encoders)")
+    parser.add_argument("--index", action="append", default=[], metavar="AXIS@CLOCK:WIDTH",
+                        help="pulse that axis's index input high for WIDTH clocks (repeatable; needs --encoders)")
+    parser.add_argument("--probe", action="append", default=[], metavar="CLOCK:WIDTH",
+                        help="pulse the card's probe input high for WIDTH clocks (repeatable; needs --encoders)")
     args = parser.parse_args(argv)
     failure = None
     if args.fail is not None:
@@ -328,12 +367,31 @@ def main(argv=None):
         parser.error(f"--free-run must be 0..{MAX_FREE_RUN} clocks, not {args.free_run}")
     if not -MAX_PPM <= args.ppm <= MAX_PPM:
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
+    pins = None
+    cued = args.encoder_walk or args.index or args.probe
+    if cued and not args.encoders:
+        parser.error("--encoder-walk, --index and --probe need --encoders: a card without encoders has no such pins")
+    if cued and machine is not None and machine.motors:
+        parser.error("--encoder-walk, --index and --probe drive the encoder pins the --machine's motors drive: "
+                     "give one or the other")
+    if cued:
+        pins = EncoderPins(args.axes)
+        try:
+            for axis, clock, counts in sorted((parse_cue(cue, args.axes) for cue in args.encoder_walk),
+                                              key=lambda cue: cue[1]):
+                pins.walk(axis, clock, counts)
+            for cue in args.index:
+                pins.pulse(*parse_cue(cue, args.axes))
+            for cue in args.probe:
+                pins.probe(*parse_probe(cue))
+        except ValueError as error:
+            parser.error(str(error))
     if os.path.exists(args.socket):
         parser.error(f"{args.socket} exists: remove it or choose another path")
     session = CardSession("verilator", clock_hz=args.clock_hz, machine=machine, axes=args.axes,
                           encoders=int(args.encoders))
     try:
-        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop, stalls)
+        server = CardServer(session, args.clock_hz, args.ppm, failure, args.estop, stalls, pins)
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         listener.bind(args.socket)
         os.chmod(args.socket, 0o666)  # the driver runs as LinuxCNC's (ordinary) user

@@ -200,9 +200,10 @@ class CardSession:
         return bool(getattr(self.target.pins, name))
 
     def set_input(self, name, level):
-        """Set the machine input pin ``name`` (``estop``, ``limit_pos_z``, ...: ``MotorPins``) to
-        ``level``, taken by the next rising edge; a session with a simulated machine drives them itself."""
-        if self.machine is not None:
+        """Set the machine input pin ``name`` (``estop``, ``limit_pos_z``, ``enc_a_x``, ...: ``MotorPins``)
+        to ``level``, taken by the next rising edge; a session with a simulated machine drives its
+        switches and E-stop itself (and the encoder pins of its motors)."""
+        if self.machine is not None and not name.startswith(("enc_", "probe")):
             raise RuntimeError("the simulated machine drives the input pins")
         if self.kind == "verilator":
             self._runner.card.model[f"pins_{name}"] = int(bool(level))

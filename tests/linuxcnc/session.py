@@ -96,7 +96,24 @@ net drive-enable => sampler.0.pin.6
 loadusr ./record.sh {samples}
 """
 MILL_AXES = 3  # dda_xyz: X, Y, Z
-CONFIGS = {"dda_xy": RECORD_HAL, "dda_xyz": MILL_RECORD_HAL}  # sample configuration: what the sampler records
+ENCODER_RECORD_HAL = """loadrt sampler depth=16384 cfg=ffffffubbsbb
+addf sampler.0 servo-thread
+net x-pos-cmd => sampler.0.pin.0
+net y-pos-cmd => sampler.0.pin.1
+net x-pos-fb => sampler.0.pin.2
+net y-pos-fb => sampler.0.pin.3
+net x-f-error joint.0.f-error => sampler.0.pin.4
+net y-f-error joint.1.f-error => sampler.0.pin.5
+net card-clock dda-card.0.clock => sampler.0.pin.6
+net card-fault => sampler.0.pin.7
+net drive-enable => sampler.0.pin.8
+net stop-reason dda-card.0.stop-reason => sampler.0.pin.9
+net x-homed joint.0.homed => sampler.0.pin.10
+net y-homed joint.1.homed => sampler.0.pin.11
+loadusr ./record.sh {samples}
+"""
+# sample configuration: what the sampler records
+CONFIGS = {"dda_xy": RECORD_HAL, "dda_xyz": MILL_RECORD_HAL, "dda_xy_encoders": ENCODER_RECORD_HAL}
 
 
 def configure(run, config="dda_xy"):
