@@ -27,7 +27,8 @@ MIN_FERROR = 0.5           # mm: the joints' MIN_FERROR (LinuxCNC's own limit at
 # each axis's motor: its encoder edges at least 3 clocks apart (the card counts them with filter
 # FALSE, ENC_FILTER 2) and 10 clocks behind the steps
 MOTORS = sim_machine.MachineConfig(motors={axis: sim_machine.Motor(counts_per_step=COUNTS_PER_STEP, lag=10, spacing=3,
-                                                                index_period=INDEX_PERIOD) for axis in ("X", "Y")})
+                                                                             index_period=INDEX_PERIOD)
+                                           for axis in ("X", "Y")})
 # the simulated card runs at 1 MHz: hostmot2's 15-clock filter would be 15 us there, slower than a
 # motor at full speed (80 counts in the first 80 clocks of a period); a real card's 33 MHz is not
 ENCODER_HAL = "setp dda-card.0.encoder.00.filter 0\nsetp dda-card.0.encoder.01.filter 0\n"
