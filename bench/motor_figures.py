@@ -1,6 +1,6 @@
 """Stall to stop on the card with encoders and simulated motors: ``python -m bench.motor_figures``.
 
-On the two-axis Verilator build with encoders (``sim/card/motor_card_bench.py``): a motor on X of
+On the two-axis Verilator build with encoders (``bench/motor_runs.py``): a motor on X of
 ``--counts-per-step`` counts a step, ENC_SCALE the same, FERROR_LIMIT ``--limit``; a line of X steps at
 each FEED_RATE of ``--feed-rates``, the motor stalled after ``--stall-after`` steps.  Prints per feed
 rate the clocks between two steps, the clocks from the stall (the first clock the motor did not
@@ -12,7 +12,7 @@ the golden model's over every clock).  docs/encoders.md quotes the figures.
 import argparse
 
 from models.sim_machine import MachineConfig, Motor
-from sim.card.motor_card_bench import motor_run, stop_reason
+from bench.motor_runs import motor_run, stop_reason
 
 
 def main(argv=None):

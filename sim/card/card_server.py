@@ -4,7 +4,8 @@
 [--free-run CLOCKS] [--ppm N] [--machine FILE [--estop CLOCK ...] [--stall AXIS@CLOCK ...]]
 [--encoder-walk CUE ...] [--index CUE ...] [--probe CUE ...]``
 opens ``CardSession("verilator", clock_hz=N, axes=N, encoders=...)`` (a card built to report N in
-CLOCK_HZ, of N axes, with encoder inputs with ``--encoders``), listens on PATH, serves one client and, when the client goes,
+CLOCK_HZ, of N axes, with encoder inputs with ``--encoders``), listens on PATH, serves one client
+and, when the client goes,
 writes FILE: the card clock of every ADVANCE, register write and FIFO burst,
 the STEP/DIR pin rises (``rises``: clock, X and Y stepped, their DIR pins;
 ``axis_rises``: clock, every axis's step position after it, from the raw

@@ -9,7 +9,6 @@ from host import gcode
 from host.check import check
 from host.encoder_path import encoder_samples, measure
 from host.machine import Machine
-from host.pin_measure import pin_points
 from host.planner import plan
 from models.sim_machine import MachineConfig, Motor
 from tests.host.test_run import EXAMPLES, figure, run_host

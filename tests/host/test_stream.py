@@ -108,5 +108,5 @@ def test_a_stop_mid_stream_raises_instead_of_waiting_for_the_busy_card():
         planned = plan(gcode.parse("G1 X0.5 F600\nG1 X1\nG1 X1.5\nG1 X2\n", "limit.ngc"), machine)
         start = transport.clocks
         with pytest.raises(MachineStopped, match="LIMIT"):
-            stream(card, planned, should_stop=lambda: transport.clocks - start > GIVE_UP_CLOCKS)
+            stream(card, planned, should_stop=lambda: transport.clocks - start > GIVE_UP_CLOCKS, slice_seconds=1e-3)
         assert 60 <= card.position()[0] < 100 and transport.clocks - start < GIVE_UP_CLOCKS

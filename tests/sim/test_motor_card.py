@@ -1,11 +1,11 @@
 """Moves on the Verilator card built with encoders with the simulated machine's motors following
-(``sim/card/motor_card_bench.py``): the encoders end on the steps times the counts per step, the
+(``bench/motor_runs.py``): the encoders end on the steps times the counts per step, the
 following error stays within its limit, and a motor stalled mid-move trips the following-error stop
 at the step the spec says, with DRIVE_ENABLE low within the stated clocks."""
 import pytest
 
 from models.sim_machine import MachineConfig, Motor
-from sim.card.motor_card_bench import GUARD_CLOCKS, motor_run, stop_reason
+from bench.motor_runs import GUARD_CLOCKS, motor_run, stop_reason
 
 pytestmark = [pytest.mark.xdist_group("encoder_card"),
               pytest.mark.slow(reason="the Verilator card with encoders (a build of its own, about a minute of "

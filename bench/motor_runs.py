@@ -36,9 +36,9 @@ class MotorRun:
     after the run), ``positions`` (POS), ``ferror_reads`` (ENC_FERROR read during the moves, per
     axis), ``stop_reason`` (STOP_REASON), ``drive_low_at`` (the clock DRIVE_ENABLE was first seen low
     after the drives came on, None if never), ``stall_at`` (the first clock the stalled motor did
-    not turn), ``step_width`` (STEP's high clocks), ``x_rises`` (the clocks of STEP_X's rises).  Model: ``model_ferror`` (its following error
-    after the run), ``model_worst`` (its largest |error| over the run, per axis), ``model_stop_at``
-    (the edge its stop flag rose, None if never).  ``machine``: the machine's ``MachineState``."""
+    not turn), ``step_width`` (STEP's high clocks), ``x_rises`` (the clocks of STEP_X's rises).
+    Model: ``model_ferror`` (its following error after the run), ``model_worst`` (its largest
+    |error| over the run, per axis), ``model_stop_at`` (the edge its stop flag rose, None if never).  ``machine``: the machine's ``MachineState``."""
     counts: tuple
     ferror: tuple
     positions: tuple
