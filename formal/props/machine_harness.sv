@@ -87,12 +87,12 @@ module machine_harness #(
     // ------------------------------------------------------------ environment
     always @(*) begin
         // the inputs' conditioning as reset: the reaction times of docs/machine.md
-        assume(!(l_we && !l_space && (l_addr == REG_INPUT_POLARITY || l_addr == REG_INPUT_FILTER || l_addr == REG_INPUT_TICK)));
+        assume(!(l_we && !l_space && (l_offset == REG_INPUT_POLARITY || l_offset == REG_INPUT_FILTER || l_offset == REG_INPUT_TICK)));
         // the STEP pins' rules here are those of step/dir mode, STEP_MODE's reset
-        assume(!(l_we && !l_space && l_addr == REG_STEP_MODE));
-        if (l_we && !l_space && l_addr == REG_WATCHDOG) assume(l_be == 4'hF);
+        assume(!(l_we && !l_space && l_offset == REG_STEP_MODE));
+        if (l_we && !l_space && l_offset == REG_WATCHDOG) assume(l_be == 4'hF);
 `ifdef WATCHDOG_SMALL
-        if (l_we && !l_space && l_addr == REG_WATCHDOG) assume(l_wdata < `WATCHDOG_SMALL);
+        if (l_we && !l_space && l_offset == REG_WATCHDOG) assume(l_wdata < `WATCHDOG_SMALL);
 `endif
     end
     // the interpolator (regs_fifo_env.vh) steps only in the clock after an
@@ -233,7 +233,7 @@ module machine_harness #(
         if (!reset_n) begin
             wd_armed <= 0; wd_quiet <= 0; wd_elapsed <= 0; prev_armed <= 0;
         end else begin
-            if (io_write_now && l_addr == REG_WATCHDOG) begin
+            if (io_write_now && l_offset == REG_WATCHDOG) begin
                 wd_armed <= l_wdata[23:0] != 0; wd_timeout <= l_wdata[23:0]; wd_elapsed <= 0;
                 wd_quiet <= !guard_stopped && !guard_stopping; wd_fired <= 0;
                 prev_armed <= wd_armed; prev_timeout <= wd_timeout; prev_elapsed <= wd_elapsed + 1;

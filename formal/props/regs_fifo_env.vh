@@ -7,7 +7,10 @@
 //     CHECK_REQUESTER = 0: the back end's answers asserted, `lb_*`);
 //   * the register write of the last clock (`stage_*`: a register takes a
 //     bus write one clock after the transfer, rtl/regs_fifo.py) and the
-//     register models generated from the table (regs_table.vh);
+//     register models generated from the table (regs_table.vh); an access
+//     is judged by the BAR0 offset of the register it reaches (`l_offset`,
+//     `stage_addr`: X's and Y's block registers in BAR2 are BAR0's,
+//     `bar0_offset` of regs_offsets.vh);
 //   * the FIFO level: words the bus pushed (a memory-space write answered
 //     ready with a byte enabled) and the sequencer has not taken;
 //   * a free interpolator on the DDA port, busy only from a start until its
@@ -38,6 +41,7 @@
 `endif
 
     // ------------------------------------------------------------ register access
+    wire [15:0] l_offset = bar0_offset(l_addr);
     wire read_now = l_re && l_ready && !l_space;
     wire io_write_now = l_we && l_ready && !l_space;
     reg stage_write = 0;
@@ -45,7 +49,7 @@
     reg [31:0] stage_data = 0, stage_mask = 0;
     always @(posedge clock) begin
         stage_write <= reset_n && io_write_now;
-        stage_addr <= l_addr;
+        stage_addr <= l_offset;
         stage_data <= l_wdata;
         stage_mask <= {{8{l_be[3]}}, {8{l_be[2]}}, {8{l_be[1]}}, {8{l_be[0]}}};
     end

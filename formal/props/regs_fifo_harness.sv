@@ -55,8 +55,8 @@ module regs_fifo_harness #(
     // running machine (docs/machine.md for the stops, the hold and homing).
 `ifdef MACHINE_RUNNING
     wire [6:0] machine_in = 7'd0;
-    always @(*) assume(!(l_we && !l_space && (l_addr == REG_INPUT_POLARITY || l_addr == REG_WATCHDOG || l_addr == REG_HOME)));
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_MACHINE_CONTROL && l_be[0] && l_wdata[MACHINE_CONTROL_HOLD_LSB]));
+    always @(*) assume(!(l_we && !l_space && (l_offset == REG_INPUT_POLARITY || l_offset == REG_WATCHDOG || l_offset == REG_HOME)));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_MACHINE_CONTROL && l_be[0] && l_wdata[MACHINE_CONTROL_HOLD_LSB]));
 `else
     (* anyseq *) wire [6:0] machine_in;
 `endif
@@ -104,7 +104,7 @@ module regs_fifo_harness #(
         if (push) begin rf_push_only_with_room: assert(level < DEPTH || pop); end
         if (push) begin rf_push_not_flushed: assert(!fifo_flush); end
         if (l_we && l_space && !stage_write) begin rf_full_answers_retry: assert(l_retry == (level == DEPTH) && l_ready == !l_retry); end
-        if (read_now && l_addr == REG_STATUS) begin
+        if (read_now && l_offset == REG_STATUS) begin
             rf_status_level: assert(l_rdata[STATUS_FIFO_LEVEL_LSB +: STATUS_FIFO_LEVEL_WIDTH] == level_read);
             rf_status_empty: assert(l_rdata[STATUS_FIFO_EMPTY_LSB] == (level_read == 0));
             rf_status_full: assert(l_rdata[STATUS_FIFO_FULL_LSB] == (level_read == DEPTH));
@@ -235,7 +235,7 @@ module regs_fifo_harness #(
 `ifdef COMMANDS_WITHOUT_CLEAR
     // execution resumes after CLEAR_ERROR with the command after the bad one:
     // the counts above assume no COMMAND write (soft reset, clear error)
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_COMMAND));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_COMMAND));
 `endif
     // ------------------------------------------------------------ pulse outputs
     // STEP high for at least STEP_WIDTH clocks and low for at least STEP_SPACE;
@@ -272,14 +272,14 @@ module regs_fifo_harness #(
         position_x <= (!reset_n || clear_position_due) ? 32'd0 : position_x_now;
         position_x_read <= position_x_now;
     end
-    always @(posedge clock) if (reset_n && read_now && l_addr == REG_POS_X) begin
+    always @(posedge clock) if (reset_n && read_now && l_offset == REG_POS_X) begin
         pulse_position_x: assert(l_rdata == position_x_read);
     end
 `ifdef POSITION_WITHOUT_HOMING
     // HOME zeroes the homed axis's position where its filtered switch
     // releases (docs/machine.md), which this model does not follow: no HOME
     // (0x7C) here; sim/card/test_homing.py checks the zeroing
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_HOME));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_HOME));
 `endif
 `ifdef DIRECT_COUNTS
     // direct mode (docs/registers.md): a PULSE_COUNT_X write of a signed n
@@ -305,7 +305,7 @@ module regs_fifo_harness #(
         if (!p_advance) assume(!steps_step_x && !steps_step_y);
         assume(!(set_strobe && (set_index == SET_STEP_WIDTH || set_index == SET_DIR_SETUP || set_index == SET_DIR_HOLD
                                 || set_index == SET_STEP_SPACE)));
-        assume(!(l_we && !l_space && l_addr == REG_COMMAND));
+        assume(!(l_we && !l_space && l_offset == REG_COMMAND));
     end
     wire [9:0] step_period = model_step_width + model_step_space + model_dir_setup + model_dir_hold
                              + `PULSE_QUEUE_CLOCKS;
@@ -318,9 +318,9 @@ module regs_fifo_harness #(
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
     // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY, STEP_SPACE
-    always @(*) assume(!(l_we && !l_space && (l_addr == REG_STEP_WIDTH || l_addr == REG_DIR_SETUP
-                                               || l_addr == REG_DIR_HOLD || l_addr == REG_DIR_POLARITY
-                                               || l_addr == REG_STEP_SPACE)));
+    always @(*) assume(!(l_we && !l_space && (l_offset == REG_STEP_WIDTH || l_offset == REG_DIR_SETUP
+                                               || l_offset == REG_DIR_HOLD || l_offset == REG_DIR_POLARITY
+                                               || l_offset == REG_STEP_SPACE)));
 `endif
     // a SET of a timing register waits until the outputs are quiet and never
     // changes a pulse under way (docs/instructions.md): it leaves nothing
@@ -330,7 +330,7 @@ module regs_fifo_harness #(
 `ifndef STEP_MODES_FREE
     // the pins' rules here are those of step/dir mode, STEP_MODE's reset: no
     // bus write of STEP_MODE (the other modes: sim/card/test_card_units.py)
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_STEP_MODE));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_STEP_MODE));
 `endif
 `ifdef REGS_FIFO_INVARIANTS
 `include "regs_fifo_invariants.vh"
