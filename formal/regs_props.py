@@ -115,6 +115,24 @@ def _bar0_offset_function():
     return lines
 
 
+def _axis_offset_functions(values):
+    """``axis_<register>(axis)``: the offset of the per-axis register (POS,
+    PULSE_PERIOD, ...) of axis ``axis`` in the build ``values``, BAR0's for X
+    and Y where BAR0 has it (the offset ``bar0_offset`` gives), else its block's."""
+    values = dict(values or {})
+    axes = values.get("axes", parameters.PARAMETERS["axes"].default)
+    lines = []
+    for spec in regmap.AXIS_REGISTERS:
+        if not regmap.present(spec, values):
+            continue
+        name = f"axis_{spec.name.lower()}"
+        lines += [f"    function [15:0] {name}(input integer axis);", "        case (axis)"]
+        lines += [f"            {axis}: {name} = 16'h{regmap.axis_register(spec.name, axis).offset:04X};"
+                  for axis in range(axes)]
+        lines += [f"            default: {name} = 16'hFFFF;   // no such axis", "        endcase", "    endfunction"]
+    return lines
+
+
 def register_offsets(values=None):
     """The generated include ``regs_offsets.vh``: each register's offset
     (REG_<NAME>), the SET index of those a SET command writes (SET_<NAME>),
@@ -123,6 +141,10 @@ def register_offsets(values=None):
     lines = ["// Generated from models/registers.py by formal/regs_props.py; do not edit.",
              "// Included into regs_fifo_harness and machine_harness."]
     lines += _bar0_offset_function()
+    lines += _axis_offset_functions(values)
+    reason = regmap.register("STOP_REASON").field("REASON")
+    lines += [f"    localparam [{reason.width - 1}:0] REASON_{name} = {reason.width}'d{code};   // STOP_REASON.REASON"
+              for code, name in enumerate(regmap.STOP_REASONS)]
     for reg in build_registers(values):
         lines.append(f"    localparam [15:0] REG_{reg.name} = 16'h{reg.offset:04X};")
         if reg.set_index is not None:
@@ -195,4 +217,5 @@ def table_properties(values=None):
               f"    always @(posedge clock) if (reset_n && read_now && l_addr < 16'd{size} && {unlisted}) begin",
               "        reg_unlisted_reads_zero: assert(l_rdata == 32'h0);",
               "    end"]
-    return "\n".join(lines) + "\n"
+    # a 32-bit register (FERROR_LIMIT) needs no zeros in front: {0'h0, x} is no Verilog
+    return "\n".join(lines).replace("{0'h0, ", "{") + "\n"

@@ -15,19 +15,24 @@
 //   * every register as the table says (regs_table.vh, generated from
 //     models/registers.py by formal/regs_props.py);
 //   * the pulse outputs: STEP widths, DIR set-up and hold, no STEP without a
-//     request, every request on its pin (the modules of pulse_rules.sv), and
-//     POS_X counting the STEP pulses.
+//     request, every request on its pin (the modules of pulse_rules.sv), on
+//     every axis of the build, and POS_X counting the STEP pulses.
 // The consumer side of the FIFO (the sequencer's pop, the flush) and the SET
 // command's write port are registers inside the unit: yosys `expose` makes
 // them ports, so the generated file is read unchanged.  The environment
 // (requester, register stage and models, FIFO level, interpolator) and the
 // unit's common ports are machine_harness.sv's too: regs_fifo_env.vh,
-// regs_fifo_ports.vh.
+// regs_fifo_ports.vh.  The per-axis signals are vectors over the build's
+// AXES (0 X, 1 Y, 2 Z, ...), wired by regs_fifo_axes.vh, which
+// formal/axes_props.py generates for the build (AXES and INPUTS, the
+// machine inputs, are set to match).
 `default_nettype none
 
 module regs_fifo_harness #(
     parameter DEPTH = 512,
-    parameter COORD_WIDTH = 24
+    parameter COORD_WIDTH = 24,
+    parameter AXES = 2,             // axes of the build (formal/axes_props.py)
+    parameter INPUTS = 7            // its machine inputs: E-STOP, limits and home switches
 ) (
     input wire clock,
     input wire reset_n,
@@ -37,7 +42,7 @@ module regs_fifo_harness #(
     // the interpolator
     input wire dda_busy, input wire dda_done, input wire dda_error, input wire [1:0] dda_quadrant,
     input wire dda_ready, input wire [COORD_WIDTH+2:0] dda_stop_left,
-    input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
+    input wire [AXES-1:0] steps_step, input wire [AXES-1:0] steps_dir,
     // free choice of the order shadow: follow the word pushed at this edge;
     // of the command shadow: follow the command whose header arrives now
     input wire choose_push, input wire choose_command
@@ -54,11 +59,11 @@ module regs_fifo_harness #(
     // the groups that follow every command or every step to its end judge a
     // running machine (docs/machine.md for the stops, the hold and homing).
 `ifdef MACHINE_RUNNING
-    wire [6:0] machine_in = 7'd0;
+    wire [INPUTS-1:0] machine_in = 0;
     always @(*) assume(!(l_we && !l_space && (l_offset == REG_INPUT_POLARITY || l_offset == REG_WATCHDOG || l_offset == REG_HOME)));
     always @(*) assume(!(l_we && !l_space && l_offset == REG_MACHINE_CONTROL && l_be[0] && l_wdata[MACHINE_CONTROL_HOLD_LSB]));
 `else
-    (* anyseq *) wire [6:0] machine_in;
+    (* anyseq *) wire [INPUTS-1:0] machine_in;
 `endif
 
 `include "regs_fifo_env.vh"
@@ -243,28 +248,26 @@ module regs_fifo_harness #(
     // clocks after its trailing edge (docs/registers.md), judged with the
     // settings in force when the interval began (a bus write to a timing
     // register in the interval leaves it unjudged; a SET does not)
-    pulse_axis_rules x_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_x), .dir(pins_dir_x),
-        .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
-        .settings_written(timing_written));
-    pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
-        .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
-        .settings_written(timing_written));
     // every STEP pulse on a pin answers a step request: of the interpolator
-    // (steps_step_*) or of the direct pulse generator (PULSE, PULSE_COUNT_*)
-    pulse_requests x_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
-        .step(pins_step_x));
-    pulse_requests y_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
-        .step(pins_step_y));
+    // (steps_step) or of the direct pulse generator (PULSE, PULSE_COUNT_*)
+    genvar axis;
+    generate for (axis = 0; axis < AXES; axis = axis + 1) begin : axes
+        pulse_axis_rules timing (.clock(clock), .reset_n(reset_n), .step(pins_step[axis]), .dir(pins_dir[axis]),
+            .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
+            .settings_written(timing_written));
+        pulse_requests requests (.clock(clock), .reset_n(reset_n),
+            .request(steps_step[axis] || direct_request[axis]), .step(pins_step[axis]));
+    end endgenerate
     // POS_X counts the STEP pulses that left the X pin, +1 where DIR (without
     // DIR_POLARITY) is high, -1 where low, at the edge the pin rises;
     // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/regs/pulse_out.py)
     reg p_pins_step_x = 0, cleared_position = 0, clear_position_due = 0;
     reg [1:0] p_polarity = 0;
     reg [31:0] position_x = 0, position_x_read = 0;
-    wire step_x_rose = pins_step_x && !p_pins_step_x && !cleared_position;
-    wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir_x ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
+    wire step_x_rose = pins_step[0] && !p_pins_step_x && !cleared_position;
+    wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir[0] ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
     always @(posedge clock) begin
-        p_pins_step_x <= pins_step_x;
+        p_pins_step_x <= pins_step[0];
         p_polarity <= model_dir_polarity;
         clear_position_due <= reset_n && stage_write && stage_addr == REG_COMMAND
                               && stage_data[COMMAND_CLEAR_POSITION_LSB] && stage_mask[COMMAND_CLEAR_POSITION_LSB];
@@ -282,16 +285,20 @@ module regs_fifo_harness #(
     always @(*) assume(!(l_we && !l_space && l_offset == REG_HOME));
 `endif
 `ifdef DIRECT_COUNTS
-    // direct mode (docs/registers.md): a PULSE_COUNT_X write of a signed n
-    // gives no more than |n| X pulses (pulse_rules.sv), judged from a write
+    // direct mode (docs/registers.md): a PULSE_COUNT write of a signed n
+    // gives no more than |n| pulses of its axis (pulse_rules.sv), on every
+    // axis (at any of its register's offsets), judged from a write
     // taken with CONTROL.MODE = 1 and all bytes enabled, until MODE is
     // cleared, a COMMAND write (SOFT_RESET drops the pulses) or the next
     // write.  With MACHINE_RUNNING nothing halts the card and no HOME takes
     // the pulses.
-    direct_count_rules x_direct (.clock(clock), .reset_n(reset_n),
-        .drop(!model_control[CONTROL_MODE_LSB] || (stage_write && stage_addr == REG_COMMAND)),
-        .count_write(stage_write && stage_addr == REG_PULSE_COUNT_X), .judge(stage_mask == 32'hFFFFFFFF),
-        .count(stage_data), .request(direct_request_x));
+    genvar counted;
+    generate for (counted = 0; counted < AXES; counted = counted + 1) begin : direct_counts
+        direct_count_rules rules (.clock(clock), .reset_n(reset_n),
+            .drop(!model_control[CONTROL_MODE_LSB] || (stage_write && stage_addr == REG_COMMAND)),
+            .count_write(stage_write && stage_addr == axis_pulse_count(counted)), .judge(stage_mask == 32'hFFFFFFFF),
+            .count(stage_data), .request(direct_request[counted]));
+    end endgenerate
 `endif
 `ifdef PULSE_PACED
     // every step request leaves on its pin: while one waits, a STEP edge
@@ -302,17 +309,18 @@ module regs_fifo_harness #(
     // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD, STEP_SPACE), nothing drops the queue
     // (no COMMAND write)
     always @(*) begin
-        if (!p_advance) assume(!steps_step_x && !steps_step_y);
+        if (!p_advance) assume(steps_step == 0);
         assume(!(set_strobe && (set_index == SET_STEP_WIDTH || set_index == SET_DIR_SETUP || set_index == SET_DIR_HOLD
                                 || set_index == SET_STEP_SPACE)));
         assume(!(l_we && !l_space && l_offset == REG_COMMAND));
     end
     wire [9:0] step_period = model_step_width + model_step_space + model_dir_setup + model_dir_hold
                              + `PULSE_QUEUE_CLOCKS;
-    pulse_progress x_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
-        .step(pins_step_x), .period(step_period));
-    pulse_progress y_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
-        .step(pins_step_y), .period(step_period));
+    genvar paced;
+    generate for (paced = 0; paced < AXES; paced = paced + 1) begin : progress
+        pulse_progress rule (.clock(clock), .reset_n(reset_n), .request(steps_step[paced] || direct_request[paced]),
+            .step(pins_step[paced]), .period(step_period));
+    end endgenerate
 `endif
 `ifdef PULSE_TIMING_BY_SET
     // the host sets the pulse timing between moves (SET, which waits until the

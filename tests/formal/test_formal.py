@@ -213,3 +213,47 @@ def test_machine_defect_is_caught(name, tmp_path):
     judge, original, defect, rules = MACHINE_DEFECTS[name]
     assert_defect_rejected(judge, GEN_DIR / "regs_fifo.v", re.escape(original), lambda _: defect,
                            rules, tmp_path)
+
+
+# Defects put by hand into a copy of the 3-axis regs_fifo.v the `_3axes` groups
+# convert: Z's step requests granted while the card is stopped or Z steps
+# towards an active limit (its grant without the guard's gate).  The rules
+# loop over the build's axes (formal/axes_props.py), so Z's gate is judged.
+MORE_AXES_DEFECTS = {
+    "z_ungated": ("machine_stop_3axes",
+                  "assign machine_guard0_grant_z_granted_step = (machine_guard0_grant_z_request_step && machine_guard0_passes);",
+                  "assign machine_guard0_grant_z_granted_step = machine_guard0_grant_z_request_step;",
+                  {"ms_limit_dropped", "ms_stopped_no_step", "mr_estop_no_step"}),
+}
+
+
+@pytest.mark.slow(reason="a k-induction of a minute on the 3-axis build")
+@pytest.mark.parametrize("name", MORE_AXES_DEFECTS)
+def test_more_axes_defect_is_caught(name, tmp_path):
+    judge, original, defect, rules = MORE_AXES_DEFECTS[name]
+    assert_defect_rejected(judge, catalogue.built_unit("regs_fifo", catalogue.MORE_AXES), re.escape(original),
+                           lambda _: defect, rules, tmp_path)
+
+
+# Defects put by hand into a copy of the regs_fifo.v of the encoders build
+# (`machine_following_error`): Y's following error latched as X's (the
+# guard's table of the lowest flagged axis, wrong for Y alone); the stop
+# latched as LIMIT, not FOLLOWING_ERROR; X's flag raised at the limit, not
+# beyond it.  Each must fail the group with a rule named.
+FERROR_GUARD_DEFECTS = {
+    "axis_of_y_as_x": ("2: machine_guard0_lagging_axis = 1;", "2: machine_guard0_lagging_axis = 0;",
+                       {"fg_stops_on_a_flag", "fg_stop_only_on_a_flag"}),
+    "reason_limit": ("machine_guard0_guard_reason <= 4;", "machine_guard0_guard_reason <= 3;",
+                     {"fg_stops_on_a_flag"}),
+    "x_flag_at_the_limit": ("(encoder_block0_axis_x_following_error_folded > encoder_block0_axis_x_check_limit)",
+                            "(encoder_block0_axis_x_following_error_folded >= encoder_block0_axis_x_check_limit)",
+                            {"fg_flags_as_errors"}),
+}
+
+
+@pytest.mark.slow(reason="a bounded check of a minute or more on the encoders build")
+@pytest.mark.parametrize("name", FERROR_GUARD_DEFECTS)
+def test_following_error_guard_defect_is_caught(name, tmp_path):
+    original, defect, rules = FERROR_GUARD_DEFECTS[name]
+    assert_defect_rejected("machine_following_error", catalogue.built_unit("regs_fifo", catalogue.ENCODERS),
+                           re.escape(original), lambda _: defect, rules, tmp_path)
