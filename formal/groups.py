@@ -20,11 +20,12 @@ from formal.isa_props import instruction_table
 from formal.pci_props import pci_constants
 from formal.regs_props import register_offsets, table_properties
 from formal.sby import Task
+from models import registers as regmap
 from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
 from models.encoder_model import ERROR_COUNT_MAX, FILTER_MAX
 from models.parameters import Build
 from rtl.convert import convert_narrow_dda, convert_unit, write_whole
-from rtl.pci.pci_slave_build import local_addr_width
+from rtl.pci.pci_slave_build import alias_bar_bits, local_addr_width
 
 PROPS = Path(__file__).resolve().parent / "props"
 
@@ -178,9 +179,13 @@ CARD_SIGNALS = ("card_core0_regs_fifo1_fifo_pop", "card_core0_regs_fifo1_fifo_em
                 "card_core0_regs_fifo1_fifo_dout")
 
 
+# the card's BAR0 and BAR2 (rtl/card.py: BAR2 holds BAR0's registers, then the per-axis blocks)
+CARD_BARS = dict(IO_BITS=regmap.IO_BAR_BITS, REG_BITS=alias_bar_bits(regmap.IO_BAR_BITS, regmap.REG_BAR_BITS))
+
+
 def card(values=None):
     """The settings the card groups share, for the build ``values``."""
-    return dict(expose=CARD_SIGNALS, parameters=harness_parameters(values), mode="bmc",
+    return dict(expose=CARD_SIGNALS, parameters=dict(harness_parameters(values), **CARD_BARS), mode="bmc",
                 generated={"card_table.vh": card_constants, "card_axes.vh": partial(card_axes, values), **ISA_TABLE,
                            **PCI_TABLE})
 

@@ -38,6 +38,7 @@
 module card_harness #(
     parameter IO_BITS = 8,
     parameter MEM_BITS = 12,
+    parameter REG_BITS = 12,       // BAR2: 4 KiB, BAR0's registers then the per-axis blocks
     parameter DEPTH = 512,
     parameter ERROR_LATENCY = 4,   // clocks from a malformed command to STATUS.ERROR
     parameter AXES = 2,            // axes of the build (formal/axes_props.py)
@@ -87,7 +88,10 @@ module card_harness #(
     // transaction (pci_bus_model.vh, shared with pci_target_harness.sv, where
     // the target's decode is proved against it)
 `include "pci_bus_model.vh"
-    wire [5:0] io_dword = txn_address[IO_BITS-1:2];
+    // the register dword a transaction reaches: BAR0's offset, or BAR2's
+    // whole (BAR2 is larger than BAR0: its offsets reach the back end whole)
+    wire [31:0] reg_offset = txn_alias ? txn_address & ~ALIAS_WRITABLE : {16'h0, txn_address[15:0] & ~IO_WRITABLE};
+    wire [29:0] io_dword = reg_offset[31:2];
 
     // the limits of the environment (above), on the address phase of a register write
     wire [5:0] address_dword = ad[IO_BITS-1:2];
