@@ -91,8 +91,8 @@ endmodule
 # inverted: it takes writes at 0x118, not 0x018), m010 (a bit of the
 # register read chain stuck at 0 after reg_word7) by the register table's
 # rules.  (Picked anew on the gen/ of the N-axis card: its m006 and m015
-# had been "rejected" only by the table's false failure at X's block
-# offsets; with the aliases modelled m015, a homing mux, survives.)
+# passed while the table failed on gen/ itself at X's block offsets; with
+# the aliases modelled m015, a homing mux, survives.)
 MUTANT_LISTS = {"pci_slave": 20, "regs_fifo": 16}
 FIXED_MUTANTS = (("pci_slave", 0, "pci_protocol", 12), ("pci_slave", 1, "pci_protocol", 12),
                  ("pci_slave", 10, "pci_protocol", 12), ("regs_fifo", 2, "regs_fifo_table", 10),
