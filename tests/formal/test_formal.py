@@ -194,8 +194,8 @@ def test_card_error_defect_is_caught(tmp_path):
 MACHINE_DEFECTS = {
     "clear_stop_during_estop": ("machine_stop", "else if ((clear_stop && (!machine_guard0_estop))) begin",
                                 "else if (clear_stop) begin", {"ms_estop_clear_refused"}),
-    "zero_while_seeking": ("machine_homing", "released = ((homing0_state == 3'b100) && (!homing0_switch));",
-                           "released = ((homing0_state == 3'b010) && (!homing0_switch));",
+    "zero_while_seeking": ("machine_homing", "released = (homing0_releasing && (!homing0_switch));",
+                           "released = (homing0_seeking && (!homing0_switch));",
                            {"hm_zero_at_release"}),
     "held_at_any_rate": ("machine_hold", "    settled = (feed_held && (!tick) && (!outputs_busy));",
                          "    settled = ((!tick) && (!outputs_busy));", {"fh_held_rate_zero"}),
