@@ -8,22 +8,26 @@ of ``gen_dir`` (what users synthesise); the DDA group converts a small-width
 build into the work folder.
 """
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 
+from formal.axes_props import (axes_inputs, axis_register_names, card_axes, ferror_axes, ferror_models,
+                               ferror_registers, harness_parameters, machine_axes, regs_fifo_axes)
+from formal.builds import GENERATED, build_folder, built_unit
 from formal.card_props import card_constants
 from formal.isa_props import instruction_table
 from formal.pci_props import pci_constants
 from formal.regs_props import register_offsets, table_properties
 from formal.sby import Task
+from models import registers as regmap
 from models.dda_build import DDA_MIN_WIDTH as NARROW_WIDTH
 from models.encoder_model import ERROR_COUNT_MAX, FILTER_MAX
 from models.parameters import Build
-from rtl.convert import BUILD_DIR, convert_narrow_dda, convert_unit, write_whole
-from rtl.pci.pci_slave_build import local_addr_width
+from rtl.convert import convert_narrow_dda, convert_unit, write_whole
+from rtl.pci.pci_slave_build import alias_bar_bits, local_addr_width
 
 PROPS = Path(__file__).resolve().parent / "props"
-GENERATED = BUILD_DIR / "formal" / "generated"
 
 
 def pci_harness_parameters(build):
@@ -66,12 +70,14 @@ class Group:
     includes: tuple = ()      # files the harness includes
     generated: dict = field(default_factory=dict)   # included files written from Python
     convert: object = None    # writes the unit's file into build/formal/generated (not gen/); its path
+    build: dict = field(default_factory=dict)   # a build other than gen/'s: its generated files' folder
 
     def sources(self, gen_dir):
         written = []
+        folder = GENERATED / build_folder(self.build) if self.build else GENERATED
         for name, make in self.generated.items():
-            GENERATED.mkdir(parents=True, exist_ok=True)
-            path = GENERATED / name
+            folder.mkdir(parents=True, exist_ok=True)
+            path = folder / name
             text = make()
             if not path.exists() or path.read_text() != text:
                 write_whole(path, text)
@@ -140,13 +146,29 @@ PCI_SLAVE_REGISTERS = ("state", "trdy_q", "stop_q", "devsel_q", "wait_count", "i
 # regs_fifo_env.vh, regs_fifo_ports.vh: the environment and ports of regs_fifo
 # both its harnesses share, with the register names (regs_offsets.vh) and
 # models (regs_table.vh) generated from models/registers.py
+# (regs_fifo_axes.vh: its per-axis ports, generated for the build's axes by formal/axes_props.py)
 REGS_ENV_FILES = [*RESET_FILES, "regs_fifo_env.vh", "regs_fifo_ports.vh"]
-REGS_TABLES = {"regs_offsets.vh": register_offsets, "regs_table.vh": table_properties}
 ISA_TABLE = {"isa_table.vh": instruction_table}   # the opcode table (models/instructions.py)
-REGS_FIFO_TABLES = {**REGS_TABLES, **ISA_TABLE}
 REGS_FILES = ["local_bus_rules.sv", "pulse_rules.sv", *REGS_ENV_FILES, "regs_fifo_harness.sv"]
-REGS_FIFO_REGISTERS = ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value",
-                       "direct_request_x", "direct_request_y", "guard_stopped")
+
+
+def regs_tables(values=None):
+    """The includes regs_fifo's harnesses read, generated for the build ``values``:
+    register names and models (models/registers.py), its per-axis ports."""
+    return {"regs_offsets.vh": partial(register_offsets, values), "regs_table.vh": partial(table_properties, values),
+            "regs_fifo_axes.vh": partial(regs_fifo_axes, values)}
+
+
+def regs_fifo_registers(values=None):
+    """Registers of regs_fifo the back end's harness makes ports: the FIFO's pop, flush and
+    output, the SET port, the guard's stop, every axis's direct-pulse request."""
+    axes = harness_parameters(values)["AXES"]
+    return ("fifo_pop", "fifo_flush", "fifo_dout", "set_strobe", "set_index", "set_value", "guard_stopped",
+            *axis_register_names(axes)["direct_request"])
+
+
+REGS_FIFO_REGISTERS = regs_fifo_registers()
+REGS_FIFO_TABLES = {**regs_tables(), **ISA_TABLE}
 REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
                      "read_waited")
 
@@ -155,7 +177,20 @@ REGS_FIFO_HELPERS = ("sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_f
 # output register), under the instance names the converter gives them
 CARD_SIGNALS = ("card_core0_regs_fifo1_fifo_pop", "card_core0_regs_fifo1_fifo_empty",
                 "card_core0_regs_fifo1_fifo_dout")
-CARD = dict(expose=CARD_SIGNALS, generated={"card_table.vh": card_constants, **ISA_TABLE, **PCI_TABLE}, mode="bmc")
+
+
+# the card's BAR0 and BAR2 (rtl/card.py: BAR2 holds BAR0's registers, then the per-axis blocks)
+CARD_BARS = dict(IO_BITS=regmap.IO_BAR_BITS, REG_BITS=alias_bar_bits(regmap.IO_BAR_BITS, regmap.REG_BAR_BITS))
+
+
+def card(values=None):
+    """The settings the card groups share, for the build ``values``."""
+    return dict(expose=CARD_SIGNALS, parameters=dict(harness_parameters(values), **CARD_BARS), mode="bmc",
+                generated={"card_table.vh": card_constants, "card_axes.vh": partial(card_axes, values), **ISA_TABLE,
+                           **PCI_TABLE})
+
+
+CARD = card()
 CARD_FILES = ["pci_rules.sv", *PCI_BUS_FILES, "card_harness.sv"]
 CARD_ORDER_DEPTH, CARD_STATUS_DEPTH, CARD_ERROR_DEPTH = 18, 20, 28
 
@@ -163,17 +198,30 @@ CARD_ORDER_DEPTH, CARD_STATUS_DEPTH, CARD_ERROR_DEPTH = 18, 20, 28
 # feed rate's and the homing unit's own registers and ports, and the step
 # requests before and after the guard's gate
 MACHINE_FILES = ["local_bus_rules.sv", *REGS_ENV_FILES, "machine_harness.sv"]
-MACHINE_REGISTERS = ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_value", "direct_request_x",
-                     "direct_request_y", "guard_stopped", "guard_stopping", "settled", "conditioning_active",
-                     "machine_guard0_guard_reason", "machine_guard0_guard_limits", "feed_rate0_rate",
-                     "homing0_state", "homing0_axis", "homing0_refused", "homing0_not_found", "home_zero",
-                     "requests_step_x", "requests_step_y", "requests_dir_x", "requests_dir_y",
-                     "machine_guard0_grant_x_granted_step", "machine_guard0_grant_y_granted_step",
-                     "ramp_step", "machine_control", "feed_held", "step_mode", "pulse_out0_axis_x_pulse",
-                     "pulse_out0_axis_y_pulse",
-                     "sync_fifo0_count", "sync_fifo0_is_empty", "sync_fifo0_is_full", "io_written",
-                     "direct_pulse0_pending", "direct_pulse1_pending", "watchdog_left")
-MACHINE = dict(expose=MACHINE_REGISTERS, generated=REGS_TABLES)
+
+
+def machine_registers(values=None):
+    """Registers and wires of regs_fifo the machine harness makes ports (the per-axis ones
+    for every axis of the build ``values``: machine_axes.vh, regs_fifo_axes.vh)."""
+    names = axis_register_names(harness_parameters(values)["AXES"])
+    return ("fifo_pop", "fifo_flush", "set_strobe", "set_index", "set_value", "guard_stopped", "guard_stopping",
+            "settled", "conditioning_active", "machine_guard0_guard_reason", "machine_guard0_guard_limits",
+            "feed_rate0_rate", "homing0_state", "homing0_axis", "homing0_refused", "homing0_not_found", "home_zero",
+            "ramp_step", "machine_control", "feed_held", "step_mode", "sync_fifo0_count", "sync_fifo0_is_empty",
+            "sync_fifo0_is_full", "io_written", "watchdog_left",
+            *(name for kind in ("direct_request", "request_step", "request_dir", "granted_step", "pulse",
+                                "direct_pending") for name in names[kind]))
+
+
+def machine(values=None):
+    """The settings the machine groups share, for the build ``values``."""
+    return dict(expose=machine_registers(values), parameters=harness_parameters(values),
+                generated={**regs_tables(values), "machine_axes.vh": partial(machine_axes, values),
+                           "axes_inputs.vh": partial(axes_inputs, values)})
+
+
+MACHINE_REGISTERS = machine_registers()
+MACHINE = machine()
 
 
 def narrow_dda():
@@ -241,7 +289,7 @@ GROUPS = [
     Group("regs_fifo_direct", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("direct_",), mode="bmc",
           depth=20, fast=False, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           defines={"DIRECT_COUNTS": None, "MACHINE_RUNNING": None},
-          text="direct mode: a PULSE_COUNT_X write of n gives no more than |n| X pulses (bounded)"),
+          text="direct mode: a PULSE_COUNT write of n gives no more than |n| pulses of its axis, every axis (bounded)"),
     Group("regs_fifo_order", "regs_fifo", REGS_FILES, "regs_fifo_harness", ("rf_fifo_in_order",),
           mode="bmc", depth=12, expose=REGS_FIFO_REGISTERS, generated=REGS_FIFO_TABLES,
           text="FIFO words reach the sequencer in order, none twice (bounded)"),
@@ -257,7 +305,8 @@ GROUPS = [
           depth=16, defines={"WATCHDOG_SMALL": 8}, **MACHINE,
           text="the watchdog stops in time, never early (bounded, timeouts below 8)"),
     Group("machine_watchdog_write", "regs_fifo", MACHINE_FILES, "machine_harness", ("mwl_",), mode="bmc",
-          depth=12, **MACHINE, text="a WATCHDOG write loads its value clamped to 24 bits: only 0 turns it off (bounded)"),
+          depth=12, **MACHINE,
+          text="a WATCHDOG write loads its value clamped to 24 bits: only 0 turns it off (bounded)"),
     Group("machine_drive", "regs_fifo", MACHINE_FILES, "machine_harness", ("md_", "minv_"), **MACHINE,
           text="no counted STEP outside DRIVE_ENABLE; only a new write re-energises after a stop"),
     Group("machine_hold", "regs_fifo", MACHINE_FILES, "machine_harness", ("fh_", "minv_"), **MACHINE,
@@ -304,6 +353,60 @@ GROUPS = [
           text="the whole card: the sequences the card groups judge are reachable within their depths"),
     Group("pci_covers", "pci_slave", PCI_FILES, "pci_target_harness", (), mode="cover", depth=24,
           parameters=PCI_PARAMETERS, generated=PCI_TABLE, text="each kind of transaction is reachable"),
+]
+
+# The card and machine properties on a build of more axes than gen/'s: the
+# same harnesses, looping over the build's axes (formal/axes_props.py), on
+# its regs_fifo.v or card.v converted into build/formal/generated/axes<N>/
+# (the default suite keeps gen/'s groups; these run in the slow set)
+MORE_AXES = {"axes": 3}
+ON_MORE_AXES = ("regs_fifo_table", "regs_fifo_pulses", "regs_fifo_pulse_progress", "regs_fifo_direct",
+                "machine_stop", "machine_reaction", "machine_watchdog", "machine_drive", "machine_hold",
+                "machine_homing", "machine_homing_pins", "card_fifo_order", "card_status")
+
+
+def on_build(item, values):
+    """Group ``item`` on the build ``values`` (its unit converted, its includes generated for it)."""
+    if item.unit == "card":
+        settings = card(values)
+    elif item.harness[-1] == "machine_harness.sv":
+        settings = machine(values)
+    else:
+        settings = dict(expose=regs_fifo_registers(values), parameters=harness_parameters(values),
+                        generated={**regs_tables(values), **ISA_TABLE})
+    axes = values["axes"]
+    return replace(item, **settings, name=f"{item.name}_{axes}axes", build=dict(values), fast=False,
+                   convert=partial(built_unit, item.unit, values),
+                   text=f"{item.text}; on a {axes}-axis build, every axis")
+
+
+GROUPS += [on_build(item, MORE_AXES) for item in GROUPS if item.name in ON_MORE_AXES]
+
+# The guard's FOLLOWING_ERROR stop on a build with encoders (two axes), through
+# the real following-error units of regs_fifo, every encoder pin free
+ENCODERS = {"encoders": 1}
+
+
+def following_error_guard(**settings):
+    """The settings of the groups of the following-error stop (machine_harness.sv, FERROR_GUARD)."""
+    shared = machine(ENCODERS)
+    return dict(shared, expose=shared["expose"] + ferror_registers(ENCODERS), build=dict(ENCODERS),
+                generated={**shared["generated"], "ferror_axes.vh": partial(ferror_axes, ENCODERS),
+                           "ferror_models.vh": partial(ferror_models, ENCODERS)},
+                includes=("machine_following_error.vh",), defines={"FERROR_GUARD": None},
+                convert=partial(built_unit, "regs_fifo", ENCODERS), fast=False,
+                **settings)
+
+
+FERROR_GUARD_DEPTH = 20
+GROUPS += [
+    Group("machine_following_error", "regs_fifo", MACHINE_FILES, "machine_harness", ("fg_",), mode="bmc",
+          **following_error_guard(depth=FERROR_GUARD_DEPTH),
+          text="encoders build: the FOLLOWING_ERROR stop only beyond the limit, always then, its AXIS, "
+               "DRIVE_ENABLE low (bounded)"),
+    Group("machine_following_error_covers", "regs_fifo", MACHINE_FILES, "machine_harness", ("fg_cover",),
+          mode="cover", **following_error_guard(depth=FERROR_GUARD_DEPTH),
+          text="encoders build: a FOLLOWING_ERROR stop of Y is reachable within the depth"),
 ]
 
 

@@ -13,6 +13,7 @@ of it returns the model as it was in the read's wait clock; a bit of a write-one
 reads 1 until a write of 1 to it; INT_STATUS.CLAMPED reads 1 only after a
 write out of a register's range; offsets the table does not list read 0.
 """
+from models import parameters
 from models import registers as regmap
 
 COMMAND_READS_ZERO = ("COMMAND",)   # "one-shot actions (read as 0)"
@@ -45,14 +46,23 @@ def _clamp_function(reg):
     return lines
 
 
-def _clamped_only_after_a_clamp():
+def build_registers(values=None):
+    """The registers of the card built with ``values`` ({build parameter: value}; the defaults
+    for the rest), BAR0's then the blocks' own, as rtl/regs_fifo.py decodes them."""
+    values = dict(values or {})
+    axes = values.get("axes", parameters.PARAMETERS["axes"].default)
+    return (tuple(regmap.built_register(r, axes) for r in regmap.bar0_registers(values))
+            + regmap.axis_registers(axes, values))
+
+
+def _clamped_only_after_a_clamp(registers):
     """INT_STATUS.CLAMPED reads 1 only after a write out of a register's
     min..max (docs/registers.md: such a write is clamped and sets it): a bus
     write whose merged value is out of range, a SET whose value is; a write to
     a WP register with a range counts whatever its value (its range is signed;
     counting more writes only weakens the rule, never fails it wrongly)."""
     causes = []
-    for reg in regmap.REGISTERS:
+    for reg in registers:
         if reg.minimum is None and reg.maximum is None:
             continue
         write = f"stage_write && stage_addr == 16'h{reg.offset:04X}"
@@ -73,7 +83,7 @@ def _clamped_only_after_a_clamp():
             "        if (!reset_n) clamp_seen <= 0;",
             "        else if (" + "\n                 || ".join(causes) + ") clamp_seen <= 1;",
             "    end",
-            f"    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h{status.offset:04X}) begin",
+            f"    always @(posedge clock) if (reset_n && read_now && l_offset == 16'h{status.offset:04X}) begin",
             f"        reg_int_status_clamped_after_a_clamp: assert(!l_rdata[{bit}] || clamp_seen);",
             "    end"]
 
@@ -92,14 +102,50 @@ def _cleared_mask(reg):
     return " | ".join(terms)
 
 
-def register_offsets():
+def _bar0_offset_function():
+    """``bar0_offset(addr)``: the BAR0 offset of the register at ``addr``, which
+    differs from ``addr`` at X's and Y's block offsets in BAR2 (``axis_aliases``)."""
+    lines = ["    // the BAR0 offset of the register an access at addr reaches (X's and Y's",
+             "    // block registers in BAR2 are BAR0's: models/registers.py axis_aliases)",
+             "    function [15:0] bar0_offset(input [15:0] addr);",
+             "        case (addr)"]
+    lines += [f"            16'h{block:04X}: bar0_offset = 16'h{bar0:04X};"
+              for block, bar0 in sorted(regmap.axis_aliases().items())]
+    lines += ["            default: bar0_offset = addr;", "        endcase", "    endfunction"]
+    return lines
+
+
+def _axis_offset_functions(values):
+    """``axis_<register>(axis)``: the offset of the per-axis register (POS,
+    PULSE_PERIOD, ...) of axis ``axis`` in the build ``values``, BAR0's for X
+    and Y where BAR0 has it (the offset ``bar0_offset`` gives), else its block's."""
+    values = dict(values or {})
+    axes = values.get("axes", parameters.PARAMETERS["axes"].default)
+    lines = []
+    for spec in regmap.AXIS_REGISTERS:
+        if not regmap.present(spec, values):
+            continue
+        name = f"axis_{spec.name.lower()}"
+        lines += [f"    function [15:0] {name}(input integer axis);", "        case (axis)"]
+        lines += [f"            {axis}: {name} = 16'h{regmap.axis_register(spec.name, axis).offset:04X};"
+                  for axis in range(axes)]
+        lines += [f"            default: {name} = 16'hFFFF;   // no such axis", "        endcase", "    endfunction"]
+    return lines
+
+
+def register_offsets(values=None):
     """The generated include ``regs_offsets.vh``: each register's offset
     (REG_<NAME>), the SET index of those a SET command writes (SET_<NAME>),
     and each field's place (<REG>_<FIELD>_LSB, _WIDTH), for the harnesses
-    that write and read the registers by name."""
+    that write and read the registers by name; ``bar0_offset``."""
     lines = ["// Generated from models/registers.py by formal/regs_props.py; do not edit.",
              "// Included into regs_fifo_harness and machine_harness."]
-    for reg in regmap.REGISTERS:
+    lines += _bar0_offset_function()
+    lines += _axis_offset_functions(values)
+    reason = regmap.register("STOP_REASON").field("REASON")
+    lines += [f"    localparam [{reason.width - 1}:0] REASON_{name} = {reason.width}'d{code};   // STOP_REASON.REASON"
+              for code, name in enumerate(regmap.STOP_REASONS)]
+    for reg in build_registers(values):
         lines.append(f"    localparam [15:0] REG_{reg.name} = 16'h{reg.offset:04X};")
         if reg.set_index is not None:
             lines.append(f"    localparam [3:0] SET_{reg.name} = 4'd{reg.set_index};")
@@ -109,14 +155,15 @@ def register_offsets():
     return "\n".join(lines) + "\n"
 
 
-def table_properties():
-    """The generated include: models and assertions for every register."""
+def table_properties(values=None):
+    """The generated include: models and assertions for every register of the build ``values``."""
     lines = ["// Generated from models/registers.py by formal/regs_props.py; do not edit.",
-             "// Included into regs_fifo_harness: reads (read_now, l_addr, l_rdata), the",
-             "// bus write of the last clock (stage_*), SET commands (set_strobe, set_index,",
-             "// set_value)."]
+             "// Included into regs_fifo_harness: reads (read_now, l_offset: the BAR0 offset of",
+             "// l_addr, l_rdata), the bus write of the last clock (stage_*, stage_addr a BAR0",
+             "// offset), SET commands (set_strobe, set_index, set_value)."]
+    registers = build_registers(values)
     listed = []
-    for reg in regmap.REGISTERS:
+    for reg in registers:
         listed.append(reg.offset)
         upper = reg.name.lower()
         mask = _mask(reg)
@@ -145,12 +192,12 @@ def table_properties():
                       f"    wire [31:0] {upper}_clearing = (stage_write && stage_addr == 16'h{reg.offset:04X})"
                       f" ? stage_data & stage_mask : 32'h0;",
                       "    always @(posedge clock) begin",
-                      f"        {upper}_cleared <= (read_now && l_addr == 16'h{reg.offset:04X} ? 32'h0 : {upper}_cleared)"
+                      f"        {upper}_cleared <= (read_now && l_offset == 16'h{reg.offset:04X} ? 32'h0 : {upper}_cleared)"
                       f" | {upper}_clearing;",
                       f"        if (!reset_n) {upper}_before <= 0;",
-                      f"        else if (read_now && l_addr == 16'h{reg.offset:04X}) {upper}_before <= l_rdata;",
+                      f"        else if (read_now && l_offset == 16'h{reg.offset:04X}) {upper}_before <= l_rdata;",
                       "    end"]
-        lines.append(f"    always @(posedge clock) if (reset_n && read_now && l_addr == 16'h{reg.offset:04X}) begin")
+        lines.append(f"    always @(posedge clock) if (reset_n && read_now && l_offset == 16'h{reg.offset:04X}) begin")
         if mask != 0xFFFFFFFF:
             lines.append(f"        reg_{upper}_reserved_zero: assert((l_rdata & 32'h{(~mask) & 0xFFFFFFFF:08X}) == 32'h0);")
         if reg.name == "ID":
@@ -162,11 +209,13 @@ def table_properties():
         if reg.access == "RW":
             lines.append(f"        reg_{upper}_reads_model: assert(l_rdata == {{{32 - reg.width}'h0, model_{upper}_read}});")
         lines.append("    end")
-    lines += _clamped_only_after_a_clamp()
-    size = 1 << regmap.IO_BAR_BITS
-    unlisted = " && ".join(f"l_addr != 16'h{offset:04X}" for offset in listed)
-    lines += ["    // offsets the table does not list read 0 (docs/registers.md)",
+    lines += _clamped_only_after_a_clamp(registers)
+    # BAR2 (the registers at BAR0's offsets, then the blocks): l_offset is an alias's BAR0 offset
+    size = 1 << regmap.REG_BAR_BITS
+    unlisted = " && ".join(f"l_offset != 16'h{offset:04X}" for offset in listed)
+    lines += ["    // offsets the build's table does not list read 0 (docs/registers.md)",
               f"    always @(posedge clock) if (reset_n && read_now && l_addr < 16'd{size} && {unlisted}) begin",
               "        reg_unlisted_reads_zero: assert(l_rdata == 32'h0);",
               "    end"]
-    return "\n".join(lines) + "\n"
+    # a 32-bit register (FERROR_LIMIT) needs no zeros in front: {0'h0, x} is no Verilog
+    return "\n".join(lines).replace("{0'h0, ", "{") + "\n"

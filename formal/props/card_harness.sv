@@ -23,6 +23,8 @@
 // makes those signals ports, so the generated file is read unchanged.  The
 // bus lines, PCI pins and bus model are pci_target_harness.sv's
 // (pci_bus_lines.vh, pci_pins.vh, pci_bus_model.vh, with pci_table.vh).
+// The card's per-axis pins (STEP/DIR, the machine inputs) are vectors over
+// the build's AXES and INPUTS, wired by card_axes.vh (formal/axes_props.py).
 //
 // Limits of the environment (each a restriction of what the bus does):
 //   * no register write (BAR0 or BAR2) to COMMAND (SOFT_RESET, CLEAR_ERROR
@@ -36,8 +38,11 @@
 module card_harness #(
     parameter IO_BITS = 8,
     parameter MEM_BITS = 12,
+    parameter REG_BITS = 12,       // BAR2: 4 KiB, BAR0's registers then the per-axis blocks
     parameter DEPTH = 512,
-    parameter ERROR_LATENCY = 4    // clocks from a malformed command to STATUS.ERROR
+    parameter ERROR_LATENCY = 4,   // clocks from a malformed command to STATUS.ERROR
+    parameter AXES = 2,            // axes of the build (formal/axes_props.py)
+    parameter INPUTS = 7           // its machine inputs: E-STOP, limits and home switches
 ) (
     input wire clock,
     input wire reset_n,
@@ -55,26 +60,25 @@ module card_harness #(
     // this card is the only target: the lines are its drivers or the initiator's
     wire o_trdy_n = 1'b1, o_devsel_n = 1'b1, o_stop_n = 1'b1;
 `include "pci_bus_lines.vh"
-    wire step_x, dir_x, step_y, dir_y, drive_enable;
+    wire [AXES-1:0] step, dir;
+    wire drive_enable;
     // exposed signals of the card: the sequencer's pop, the FIFO's empty flag and output
     wire fifo_pop, fifo_empty;
     wire [31:0] fifo_dout;
 
 `ifdef MACHINE_RUNNING
-    wire [6:0] machine_in = 7'd0;
+    wire [INPUTS-1:0] machine_in = 0;
 `else
-    (* anyseq *) wire [6:0] machine_in;
+    (* anyseq *) wire [INPUTS-1:0] machine_in;
 `endif
 
     card dut (
 `include "pci_pins.vh"
-        , .pins_step_x(step_x), .pins_dir_x(dir_x), .pins_step_y(step_y), .pins_dir_y(dir_y),
-        .pins_drive_enable(drive_enable), .pins_estop(machine_in[0]),
-        .pins_limit_pos_x(machine_in[1]), .pins_limit_neg_x(machine_in[2]),
-        .pins_limit_pos_y(machine_in[3]), .pins_limit_neg_y(machine_in[4]),
-        .pins_home_x(machine_in[5]), .pins_home_y(machine_in[6]),
+        , .pins_drive_enable(drive_enable),
         .card_core0_regs_fifo1_fifo_pop(fifo_pop), .card_core0_regs_fifo1_fifo_empty(fifo_empty),
-        .card_core0_regs_fifo1_fifo_dout(fifo_dout));
+        .card_core0_regs_fifo1_fifo_dout(fifo_dout)
+`include "card_axes.vh"
+        );
 
 `include "harness_reset.vh"
 
@@ -84,7 +88,10 @@ module card_harness #(
     // transaction (pci_bus_model.vh, shared with pci_target_harness.sv, where
     // the target's decode is proved against it)
 `include "pci_bus_model.vh"
-    wire [5:0] io_dword = txn_address[IO_BITS-1:2];
+    // the register dword a transaction reaches: BAR0's offset, or BAR2's
+    // whole (BAR2 is larger than BAR0: its offsets reach the back end whole)
+    wire [31:0] reg_offset = txn_alias ? txn_address & ~ALIAS_WRITABLE : {16'h0, txn_address[15:0] & ~IO_WRITABLE};
+    wire [29:0] io_dword = reg_offset[31:2];
 
     // the limits of the environment (above), on the address phase of a register write
     wire [5:0] address_dword = ad[IO_BITS-1:2];

@@ -15,7 +15,11 @@
 // generated file is read unchanged.  The register models (model_*) come
 // from the register table (regs_table.vh); the environment and the unit's
 // common ports are regs_fifo_harness.sv's (regs_fifo_env.vh,
-// regs_fifo_ports.vh).
+// regs_fifo_ports.vh).  The per-axis signals are vectors over the build's
+// AXES (0 X, 1 Y, 2 Z, ...) and the machine inputs INPUTS wide, wired by
+// regs_fifo_axes.vh and machine_axes.vh, with each axis's limits and home
+// switch among the inputs in axes_inputs.vh (formal/axes_props.py
+// generates them for the build), so every property holds for every axis.
 //
 // Environment: INPUT_POLARITY, INPUT_FILTER and INPUT_TICK keep their reset
 // values (0, 3 samples, 1 clock: the settings of the docs' reaction table);
@@ -24,7 +28,9 @@
 
 module machine_harness #(
     parameter COORD_WIDTH = 24,
-    parameter FILTER = 3            // INPUT_FILTER as reset
+    parameter FILTER = 3,           // INPUT_FILTER as reset
+    parameter AXES = 2,             // axes of the build (formal/axes_props.py)
+    parameter INPUTS = 7            // its machine inputs: E-STOP, limits and home switches
 ) (
     input wire clock,
     input wire reset_n,
@@ -32,34 +38,34 @@ module machine_harness #(
     input wire l_we, input wire l_re, input wire l_write,
     input wire dda_busy, input wire dda_done, input wire dda_error, input wire [1:0] dda_quadrant,
     input wire dda_ready, input wire [COORD_WIDTH+2:0] dda_stop_left,
-    input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
-    input wire [6:0] machine_in
+    input wire [AXES-1:0] steps_step, input wire [AXES-1:0] steps_dir,
+    input wire [INPUTS-1:0] machine_in
 );
 `include "regs_offsets.vh"
 `include "regs_fifo_env.vh"
     wire pins_drive_enable;
     // exposed registers and ports of the units
     wire guard_stopping, settled;
-    wire [6:0] conditioning_active;
-    wire [1:0] machine_guard0_guard_reason;
-    wire [3:0] machine_guard0_guard_limits;
+    wire [INPUTS-1:0] conditioning_active;
+    wire [STOP_REASON_REASON_WIDTH-1:0] machine_guard0_guard_reason;
+    wire [2*AXES-1:0] machine_guard0_guard_limits;
     wire [15:0] feed_rate0_rate;
     wire [2:0] homing0_state;
-    wire [2:0] homing0_axis;   // HOME.AXIS_INDEX as taken: 0 X, 1 Y on the two-axis card
+    wire [2:0] homing0_axis;   // HOME.AXIS_INDEX as taken: 0 X, 1 Y, 2 Z, ...
     wire homing0_refused, homing0_not_found;
-    wire [1:0] home_zero;
-    wire requests_step_x, requests_step_y, requests_dir_x, requests_dir_y;
-    wire machine_guard0_grant_x_granted_step, machine_guard0_grant_y_granted_step;
+    wire [AXES-1:0] home_zero;
+    // per axis: the step requests before the guard's gate (the interpolator's
+    // or the direct pulses'), those it grants, the pulse outputs' pulses,
+    // the direct pulses' loads (machine_axes.vh)
+    wire [AXES-1:0] request_step, request_dir, granted_step, pulse, direct_pending;
     wire [15:0] ramp_step;
     wire feed_held;
     wire [9:0] sync_fifo0_count;
     wire sync_fifo0_is_empty, sync_fifo0_is_full, sync_fifo0_free_beyond, io_written;
     wire [2:0] sync_fifo0_free;
-    wire direct_pulse0_pending, direct_pulse1_pending;
     wire [23:0] watchdog_left;
     wire [1:0] machine_control;
     wire [1:0] step_mode;
-    wire pulse_out0_axis_x_pulse, pulse_out0_axis_y_pulse;
 
     regs_fifo dut (
 `include "regs_fifo_ports.vh"
@@ -69,54 +75,56 @@ module machine_harness #(
         .machine_guard0_guard_limits(machine_guard0_guard_limits), .feed_rate0_rate(feed_rate0_rate),
         .homing0_state(homing0_state), .homing0_axis(homing0_axis), .homing0_refused(homing0_refused),
         .homing0_not_found(homing0_not_found), .home_zero(home_zero),
-        .requests_step_x(requests_step_x), .requests_step_y(requests_step_y),
-        .requests_dir_x(requests_dir_x), .requests_dir_y(requests_dir_y),
-        .machine_guard0_grant_x_granted_step(machine_guard0_grant_x_granted_step),
-        .machine_guard0_grant_y_granted_step(machine_guard0_grant_y_granted_step),
         .ramp_step(ramp_step), .machine_control(machine_control), .step_mode(step_mode),
-        .pulse_out0_axis_x_pulse(pulse_out0_axis_x_pulse), .pulse_out0_axis_y_pulse(pulse_out0_axis_y_pulse),
         .feed_held(feed_held), .sync_fifo0_count(sync_fifo0_count), .sync_fifo0_is_empty(sync_fifo0_is_empty),
 `ifdef LOCAL_ROOM
         .sync_fifo0_free(sync_fifo0_free), .sync_fifo0_free_beyond(sync_fifo0_free_beyond),
 `else
         .sync_fifo0_is_full(sync_fifo0_is_full),
 `endif
-        .io_written(io_written), .direct_pulse0_pending(direct_pulse0_pending),
-        .direct_pulse1_pending(direct_pulse1_pending), .watchdog_left(watchdog_left));
+        .io_written(io_written), .watchdog_left(watchdog_left)
+`include "machine_axes.vh"
+`ifdef FERROR_GUARD
+`include "ferror_axes.vh"
+`endif
+        );
+`include "axes_inputs.vh"
 
     // ------------------------------------------------------------ environment
     always @(*) begin
         // the inputs' conditioning as reset: the reaction times of docs/machine.md
-        assume(!(l_we && !l_space && (l_addr == REG_INPUT_POLARITY || l_addr == REG_INPUT_FILTER || l_addr == REG_INPUT_TICK)));
+        assume(!(l_we && !l_space && (l_offset == REG_INPUT_POLARITY || l_offset == REG_INPUT_FILTER || l_offset == REG_INPUT_TICK)));
         // the STEP pins' rules here are those of step/dir mode, STEP_MODE's reset
-        assume(!(l_we && !l_space && l_addr == REG_STEP_MODE));
-        if (l_we && !l_space && l_addr == REG_WATCHDOG) assume(l_be == 4'hF);
+        assume(!(l_we && !l_space && l_offset == REG_STEP_MODE));
+        if (l_we && !l_space && l_offset == REG_WATCHDOG) assume(l_be == 4'hF);
 `ifdef WATCHDOG_SMALL
-        if (l_we && !l_space && l_addr == REG_WATCHDOG) assume(l_wdata < `WATCHDOG_SMALL);
+        if (l_we && !l_space && l_offset == REG_WATCHDOG) assume(l_wdata < `WATCHDOG_SMALL);
 `endif
     end
     // the interpolator (regs_fifo_env.vh) steps only in the clock after an
     // `advance` (a feed tick)
-    always @(*) if (!p_advance) assume(!steps_step_x && !steps_step_y);
+    always @(*) if (!p_advance) assume(steps_step == 0);
 `ifdef PATH_ONLY
     // the hold acts on the path only (direct pulses run on: docs/machine.md)
-    always @(*) assume(!direct_request_x && !direct_request_y);
+    always @(*) assume(direct_request == 0);
 `endif
 
     // ------------------------------------------------------------ history
-    reg p_step_x = 0, p_step_y = 0, p_stopped = 0, pp_stopped = 0, p_stopping = 0, p_held = 0, p_drive = 0;
-    reg [6:0] p_active = 0;
+    reg p_stopped = 0, pp_stopped = 0, p_stopping = 0, p_held = 0, p_drive = 0;
+    reg [AXES-1:0] p_step = 0;
+    reg [INPUTS-1:0] p_active = 0;
     reg [15:0] p_ramp = 0, pp_ramp = 0;
     reg [1:0] p_control = 0;
-    reg [1:0] p_reason = 0;
+    reg [STOP_REASON_REASON_WIDTH-1:0] p_reason = 0;
     always @(posedge clock) begin
-        p_step_x <= pins_step_x; p_step_y <= pins_step_y;
+        p_step <= pins_step;
         p_stopped <= guard_stopped; pp_stopped <= p_stopped; p_stopping <= guard_stopping; p_held <= settled;
         p_drive <= pins_drive_enable; p_active <= conditioning_active;
         p_ramp <= model_ramp_step; pp_ramp <= p_ramp; p_control <= model_machine_control;
         p_reason <= machine_guard0_guard_reason;
     end
-    wire rise_x = pins_step_x && !p_step_x, rise_y = pins_step_y && !p_step_y;
+    wire [AXES-1:0] rise = pins_step & ~p_step;   // STEP leading edges, per axis
+    wire steps_quiet = pins_step == 0 && p_step == 0;   // no STEP pin high nor in the clock before
     wire stop_rose = guard_stopped && !p_stopped;
 
     // a MACHINE_CONTROL write of DRIVE_ENABLE = 1 taken by the register (the
@@ -152,14 +160,14 @@ module machine_harness #(
         // STEP_MODE as reset (step/dir: no bus write of it here), so the
         // STEP pins carry the pulse outputs' own pulses
         minv_step_dir: assert(step_mode == model_step_mode && step_mode == 0
-                              && pins_step_x == pulse_out0_axis_x_pulse && pins_step_y == pulse_out0_axis_y_pulse);
+                              && pins_step == pulse);
     end
 
     // ------------------------------------------------------------ E-stop and the stop latch
     // each input: clocks its pin has been at its level (the filter's reaction)
-    wire [27:0] same_for;        // per input, 4 bits: clocks at its level
+    wire [4*INPUTS-1:0] same_for;        // per input, 4 bits: clocks at its level
     genvar i;
-    generate for (i = 0; i < 7; i = i + 1) begin : inputs
+    generate for (i = 0; i < INPUTS; i = i + 1) begin : inputs
         input_reaction #(.FILTER(FILTER)) reaction (.clock(clock), .reset_n(reset_n), .judged(judged),
             .pin(machine_in[i]), .active(conditioning_active[i]), .same_for(same_for[4*i+3:4*i]));
     end endgenerate
@@ -169,37 +177,40 @@ module machine_harness #(
         // low at INPUT_FILTER + 3 clocks" from the clock the pin changes (the
         // pin's first clock at its level is clock 0, same_for 1)
         // (sim/card/test_machine_card.py: a rise at clock 6 is the last allowed)
-        if (machine_in[0] && same_for[3:0] >= FILTER + 5) begin mr_estop_no_step: assert(!rise_x && !rise_y); end
+        if (machine_in[0] && same_for[3:0] >= FILTER + 5) begin mr_estop_no_step: assert(rise == 0); end
         // (or, with a STEP pulse under way, the clock after its STEP fell: md_*)
-        if (machine_in[0] && same_for[3:0] >= FILTER + 4 && !pins_step_x && !pins_step_y && !p_step_x && !p_step_y)
+        if (machine_in[0] && same_for[3:0] >= FILTER + 4 && steps_quiet)
         begin mr_estop_drive_low: assert(!pins_drive_enable); end
         // "the guard latches a stop at the edge after its cause: 1 ESTOP"
         if (p_active[0]) begin
-            ms_estop_stops: assert(guard_stopped && (p_stopped || machine_guard0_guard_reason == 2'd1));
+            ms_estop_stops: assert(guard_stopped && (p_stopped || machine_guard0_guard_reason == REASON_ESTOP));
             // CLEAR_STOP refused while the E-stop input is active
             if (p_stopped) begin ms_estop_clear_refused: assert(machine_guard0_guard_reason == p_reason); end
         end
         // "No new STEP edge starts ... DRIVE_ENABLE falls at the edge the latch sets"
         // (a pulse the outputs started in the clock before the latch rises on
         // the pin, a register later, in the clock after it)
-        if (p_stopped && pp_stopped) begin ms_stopped_no_step: assert(!rise_x && !rise_y); end
+        if (p_stopped && pp_stopped) begin ms_stopped_no_step: assert(rise == 0); end
         // (a STEP pulse under way keeps it high to the clock after its fall: md_*)
-        if (p_stopped && !pins_step_x && !pins_step_y && !p_step_x && !p_step_y) begin
+        if (p_stopped && steps_quiet) begin
             ms_stopped_drive_low: assert(!pins_drive_enable);
         end
         if (guard_stopped) begin ms_stopped_has_reason: assert(machine_guard0_guard_reason != 0); end
         // "STOP_REASON reads the cause from the edge STOPPING rises" (WATCHDOG or LIMIT)
-        if (guard_stopping) begin ms_stopping_has_reason: assert(!guard_stopped && machine_guard0_guard_reason[1]); end
+        if (guard_stopping) begin
+            ms_stopping_has_reason: assert(!guard_stopped && (machine_guard0_guard_reason == REASON_WATCHDOG
+                                                              || machine_guard0_guard_reason == REASON_LIMIT));
+        end
     end
 
     // ------------------------------------------------------------ limits
     // a step request towards an active limit (without a ramp) is dropped
-    // whole and latches the stop with reason LIMIT; requests away pass
-    wire [3:0] towards = {requests_step_y && !requests_dir_y && conditioning_active[4],
-                          requests_step_y && requests_dir_y && conditioning_active[3],
-                          requests_step_x && !requests_dir_x && conditioning_active[2],
-                          requests_step_x && requests_dir_x && conditioning_active[1]};
-    reg [3:0] p_towards = 0;
+    // whole and latches the stop with reason LIMIT; requests away pass.
+    // towards: per limit, in STOP_REASON.LIMITS's order (limit_bits, axes_inputs.vh)
+    wire [AXES-1:0] towards_pos = request_step & request_dir & limit_pos_active;
+    wire [AXES-1:0] towards_neg = request_step & ~request_dir & limit_neg_active;
+    wire [2*AXES-1:0] towards = limit_bits;
+    reg [2*AXES-1:0] p_towards = 0;
     reg p_halted = 0;
     always @(posedge clock) begin
         p_towards <= towards;
@@ -208,15 +219,14 @@ module machine_harness #(
     wire ramp_off = model_ramp_step == 0 && p_ramp == 0;
     always @(posedge clock) if (judged) begin
         if (towards != 0 && ramp_off) begin
-            ms_limit_dropped: assert(!machine_guard0_grant_x_granted_step && !machine_guard0_grant_y_granted_step);
+            ms_limit_dropped: assert(granted_step == 0);
         end
         if (towards == 0 && !guard_stopped && !conditioning_active[0]) begin
-            ms_away_passes: assert(machine_guard0_grant_x_granted_step == requests_step_x
-                                   && machine_guard0_grant_y_granted_step == requests_step_y);
+            ms_away_passes: assert(granted_step == request_step);
         end
         if (p_towards != 0 && p_ramp == 0 && pp_ramp == 0 && !p_halted && !p_stopping) begin
-            ms_limit_stops: assert(guard_stopped && (machine_guard0_guard_reason == 2'd2
-                || (machine_guard0_guard_reason == 2'd3 && machine_guard0_guard_limits == p_towards)));
+            ms_limit_stops: assert(guard_stopped && (machine_guard0_guard_reason == REASON_WATCHDOG
+                || (machine_guard0_guard_reason == REASON_LIMIT && machine_guard0_guard_limits == p_towards)));
         end
     end
 
@@ -233,15 +243,15 @@ module machine_harness #(
         if (!reset_n) begin
             wd_armed <= 0; wd_quiet <= 0; wd_elapsed <= 0; prev_armed <= 0;
         end else begin
-            if (io_write_now && l_addr == REG_WATCHDOG) begin
+            if (io_write_now && l_offset == REG_WATCHDOG) begin
                 wd_armed <= l_wdata[23:0] != 0; wd_timeout <= l_wdata[23:0]; wd_elapsed <= 0;
                 wd_quiet <= !guard_stopped && !guard_stopping; wd_fired <= 0;
                 prev_armed <= wd_armed; prev_timeout <= wd_timeout; prev_elapsed <= wd_elapsed + 1;
             end else begin
-                if (stop_rose && machine_guard0_guard_reason == 2'd2) wd_fired <= 1;
+                if (stop_rose && machine_guard0_guard_reason == REASON_WATCHDOG) wd_fired <= 1;
                 if (!wd_elapsed[24]) wd_elapsed <= wd_elapsed + 1;
-                if (conditioning_active[4:0] != 0 || model_ramp_step != 0 || towards != 0
-                    || (guard_stopped && machine_guard0_guard_reason != 2'd2))
+                if ((conditioning_active & STOPPING_INPUTS) != 0 || model_ramp_step != 0 || towards != 0
+                    || (guard_stopped && machine_guard0_guard_reason != REASON_WATCHDOG))
                     wd_quiet <= 0;
             end
             if (!prev_elapsed[24]) prev_elapsed <= prev_elapsed + 1;
@@ -251,9 +261,9 @@ module machine_harness #(
         // wd_elapsed is 0 in the clock after the bus write: T + 2 is the
         // write's clock + TIMEOUT + 3 (DRIVE_ENABLE: ms_stopped_drive_low)
         if (wd_armed && wd_quiet && wd_elapsed == wd_timeout + 2) begin
-            mw_watchdog_stops: assert(wd_fired || (stop_rose && machine_guard0_guard_reason == 2'd2));
+            mw_watchdog_stops: assert(wd_fired || (stop_rose && machine_guard0_guard_reason == REASON_WATCHDOG));
         end
-        if (stop_rose && machine_guard0_guard_reason == 2'd2 && !p_stopping) begin
+        if (stop_rose && machine_guard0_guard_reason == REASON_WATCHDOG && !p_stopping) begin
             mw_watchdog_not_early: assert((wd_armed && wd_elapsed >= wd_timeout)
                                           || (wd_elapsed <= 3 && prev_armed && prev_elapsed >= prev_timeout));
         end
@@ -262,12 +272,12 @@ module machine_harness #(
     // ------------------------------------------------------------ feed hold, decelerated stop
     always @(posedge clock) if (judged) begin
         // "HELD is 1 once the rate is zero and the last step has left the pins"
-        if (settled) begin fh_held_rate_zero: assert(feed_rate0_rate == 0 && !pins_step_x && !pins_step_y); end
-        if (p_held) begin fh_held_no_step: assert(!rise_x && !rise_y); end
+        if (settled) begin fh_held_rate_zero: assert(feed_rate0_rate == 0 && pins_step == 0); end
+        if (p_held) begin fh_held_no_step: assert(rise == 0); end
         // "With RAMP_STEP = 0 the rate is zero in the clock after the register takes HOLD"
         if (p_control[1] && p_ramp == 0 && pp_ramp == 0) begin fh_hold_at_once: assert(feed_rate0_rate == 0); end
         // "the guard sets STOPPING ... the stop latches at the edge after HELD rises"
-        if (stop_rose && machine_guard0_guard_reason != 2'd1 && p_ramp != 0 && pp_ramp != 0) begin
+        if (stop_rose && machine_guard0_guard_reason != REASON_ESTOP && p_ramp != 0 && pp_ramp != 0) begin
             fh_stopping_precedes: assert(p_stopping && p_held);
         end
         // "DRIVE_ENABLE stays high until the latch" (the host asking for it, no E-stop)
@@ -275,8 +285,8 @@ module machine_harness #(
             fh_drive_while_stopping: assert(pins_drive_enable);
         end
         // the latch after a decelerated stop: the last step has left the pins
-        if (stop_rose && p_stopping && machine_guard0_guard_reason != 2'd1) begin
-            fh_stop_after_last_step: assert(!pins_step_x && !pins_step_y && !p_step_x && !p_step_y);
+        if (stop_rose && p_stopping && machine_guard0_guard_reason != REASON_ESTOP) begin
+            fh_stop_after_last_step: assert(steps_quiet);
         end
     end
 
@@ -289,7 +299,7 @@ module machine_harness #(
     // only after a new MACHINE_CONTROL write of DRIVE_ENABLE = 1" (rearmed).
     always @(posedge clock) if (judged) begin
         if (p_drive && !pins_drive_enable) begin
-            md_drive_holds_pulse: assert(!pins_step_x && !pins_step_y && !p_step_x && !p_step_y);
+            md_drive_holds_pulse: assert(steps_quiet);
         end
         if (pins_drive_enable && !p_drive) begin md_drive_needs_write: assert(rearmed && !guard_stopped); end
     end
@@ -312,6 +322,10 @@ module machine_harness #(
         if (wd_loaded_value != 0) begin mwl_only_zero_turns_off: assert(watchdog_left != 0); end
     end
 
+`ifdef FERROR_GUARD
+`include "machine_following_error.vh"
+`endif
+
     // ------------------------------------------------------------ homing
     localparam HOME_IDLE = 3'd0, HOME_RELEASE = 3'd4;
     // the HOME write reaches the register (its strobe) the clock after its stage
@@ -323,7 +337,7 @@ module machine_harness #(
     always @(posedge clock) begin
         p_home_strobe <= home_strobe; p_home_state <= homing0_state; p_not_found <= homing0_not_found;
         p_not_idle <= guard_stopped || conditioning_active[0] || homing0_state != HOME_IDLE || level != 0
-                      || pins_step_x || pins_step_y;
+                      || pins_step != 0;
         if (!reset_n || (homing0_state == HOME_IDLE && home_strobe)) zeroed <= 0;
         else if (home_zero != 0) zeroed <= 1;
     end
@@ -331,9 +345,8 @@ module machine_harness #(
         // "In the clock the sequencer sees it [the filtered input inactive] it
         // stops the steps and zeroes that axis's position" (release only)
         if (home_zero != 0) begin
-            hm_zero_at_release: assert(homing0_state == HOME_RELEASE
-                && home_zero == (homing0_axis ? 2'd2 : 2'd1)
-                && !conditioning_active[homing0_axis ? 6 : 5]);
+            hm_zero_at_release: assert(homing0_state == HOME_RELEASE && homing0_axis < AXES
+                && home_zero == (1 << homing0_axis) && !home_active[homing0_axis]);
         end
         // "NOT_FOUND ... the position is not zeroed"
         if (homing0_not_found && !p_not_found) begin hm_not_found_not_zeroed: assert(!zeroed); end
@@ -343,12 +356,11 @@ module machine_harness #(
         if (p_home_strobe && p_not_idle) begin
             hm_refused: assert(homing0_refused && (p_home_state != HOME_IDLE || homing0_state == HOME_IDLE));
         end
-        // homing steps only the chosen axis
+        // homing steps only the chosen axis: no direct pulse nor STEP rise on any other
         if (homing0_state != HOME_IDLE) begin
-            hm_chosen_axis: assert(homing0_axis ? (!direct_request_x && !direct_pulse0_pending)
-                                                : (!direct_request_y && !direct_pulse1_pending));
+            hm_chosen_axis: assert(((direct_request | direct_pending) & ~(1 << homing0_axis)) == 0);
             // on the pins (bounded: the pulse outputs' queue has no helper invariant)
-            hp_chosen_axis_pins: assert(homing0_axis ? !rise_x : !rise_y);
+            hp_chosen_axis_pins: assert((rise & ~(1 << homing0_axis)) == 0);
         end
     end
 endmodule

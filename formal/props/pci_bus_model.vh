@@ -15,8 +15,10 @@
     // ------------------------------------------------------------ configuration model
     localparam [15:0] IO_WRITABLE = 16'hFFFF << IO_BITS;
     localparam [31:0] MEM_WRITABLE = 32'hFFFFFFFF << MEM_BITS;
-    // BAR2: BAR0's size in memory space, 16 bytes at least (6.2.5.1)
-    localparam ALIAS_BITS = IO_BITS > 4 ? IO_BITS : 4;
+    // BAR2: BAR0's size in memory space, 16 bytes at least (6.2.5.1), or
+    // REG_BITS where that is larger (the card's per-axis register blocks:
+    // rtl/pci/pci_slave_build.py alias_bar_bits)
+    localparam ALIAS_BITS = REG_BITS > IO_BITS && REG_BITS > 4 ? REG_BITS : (IO_BITS > 4 ? IO_BITS : 4);
     localparam [31:0] ALIAS_WRITABLE = 32'hFFFFFFFF << ALIAS_BITS;
     reg io_enable = 0, mem_enable = 0, parity_response = 0, serr_enable = 0, interrupt_disable = 0;
     reg [15:0] bar0 = 0;

@@ -27,6 +27,7 @@
 module pci_target_harness #(
     parameter IO_BITS = 6,
     parameter MEM_BITS = 12,
+    parameter REG_BITS = 4,        // BAR2's bits when larger than BAR0's (pci_bus_model.vh)
     parameter LOCAL_WIDTH = 12,
     parameter [31:0] ID_WORD = 32'hDDA01234,
     parameter [31:0] CLASS_WORD = 32'h08800001,

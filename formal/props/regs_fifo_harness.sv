@@ -15,19 +15,24 @@
 //   * every register as the table says (regs_table.vh, generated from
 //     models/registers.py by formal/regs_props.py);
 //   * the pulse outputs: STEP widths, DIR set-up and hold, no STEP without a
-//     request, every request on its pin (the modules of pulse_rules.sv), and
-//     POS_X counting the STEP pulses.
+//     request, every request on its pin (the modules of pulse_rules.sv), on
+//     every axis of the build, and POS_X counting the STEP pulses.
 // The consumer side of the FIFO (the sequencer's pop, the flush) and the SET
 // command's write port are registers inside the unit: yosys `expose` makes
 // them ports, so the generated file is read unchanged.  The environment
 // (requester, register stage and models, FIFO level, interpolator) and the
 // unit's common ports are machine_harness.sv's too: regs_fifo_env.vh,
-// regs_fifo_ports.vh.
+// regs_fifo_ports.vh.  The per-axis signals are vectors over the build's
+// AXES (0 X, 1 Y, 2 Z, ...), wired by regs_fifo_axes.vh, which
+// formal/axes_props.py generates for the build (AXES and INPUTS, the
+// machine inputs, are set to match).
 `default_nettype none
 
 module regs_fifo_harness #(
     parameter DEPTH = 512,
-    parameter COORD_WIDTH = 24
+    parameter COORD_WIDTH = 24,
+    parameter AXES = 2,             // axes of the build (formal/axes_props.py)
+    parameter INPUTS = 7            // its machine inputs: E-STOP, limits and home switches
 ) (
     input wire clock,
     input wire reset_n,
@@ -37,7 +42,7 @@ module regs_fifo_harness #(
     // the interpolator
     input wire dda_busy, input wire dda_done, input wire dda_error, input wire [1:0] dda_quadrant,
     input wire dda_ready, input wire [COORD_WIDTH+2:0] dda_stop_left,
-    input wire steps_step_x, input wire steps_step_y, input wire steps_dir_x, input wire steps_dir_y,
+    input wire [AXES-1:0] steps_step, input wire [AXES-1:0] steps_dir,
     // free choice of the order shadow: follow the word pushed at this edge;
     // of the command shadow: follow the command whose header arrives now
     input wire choose_push, input wire choose_command
@@ -54,11 +59,11 @@ module regs_fifo_harness #(
     // the groups that follow every command or every step to its end judge a
     // running machine (docs/machine.md for the stops, the hold and homing).
 `ifdef MACHINE_RUNNING
-    wire [6:0] machine_in = 7'd0;
-    always @(*) assume(!(l_we && !l_space && (l_addr == REG_INPUT_POLARITY || l_addr == REG_WATCHDOG || l_addr == REG_HOME)));
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_MACHINE_CONTROL && l_be[0] && l_wdata[MACHINE_CONTROL_HOLD_LSB]));
+    wire [INPUTS-1:0] machine_in = 0;
+    always @(*) assume(!(l_we && !l_space && (l_offset == REG_INPUT_POLARITY || l_offset == REG_WATCHDOG || l_offset == REG_HOME)));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_MACHINE_CONTROL && l_be[0] && l_wdata[MACHINE_CONTROL_HOLD_LSB]));
 `else
-    (* anyseq *) wire [6:0] machine_in;
+    (* anyseq *) wire [INPUTS-1:0] machine_in;
 `endif
 
 `include "regs_fifo_env.vh"
@@ -104,7 +109,7 @@ module regs_fifo_harness #(
         if (push) begin rf_push_only_with_room: assert(level < DEPTH || pop); end
         if (push) begin rf_push_not_flushed: assert(!fifo_flush); end
         if (l_we && l_space && !stage_write) begin rf_full_answers_retry: assert(l_retry == (level == DEPTH) && l_ready == !l_retry); end
-        if (read_now && l_addr == REG_STATUS) begin
+        if (read_now && l_offset == REG_STATUS) begin
             rf_status_level: assert(l_rdata[STATUS_FIFO_LEVEL_LSB +: STATUS_FIFO_LEVEL_WIDTH] == level_read);
             rf_status_empty: assert(l_rdata[STATUS_FIFO_EMPTY_LSB] == (level_read == 0));
             rf_status_full: assert(l_rdata[STATUS_FIFO_FULL_LSB] == (level_read == DEPTH));
@@ -235,7 +240,7 @@ module regs_fifo_harness #(
 `ifdef COMMANDS_WITHOUT_CLEAR
     // execution resumes after CLEAR_ERROR with the command after the bad one:
     // the counts above assume no COMMAND write (soft reset, clear error)
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_COMMAND));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_COMMAND));
 `endif
     // ------------------------------------------------------------ pulse outputs
     // STEP high for at least STEP_WIDTH clocks and low for at least STEP_SPACE;
@@ -243,28 +248,26 @@ module regs_fifo_harness #(
     // clocks after its trailing edge (docs/registers.md), judged with the
     // settings in force when the interval began (a bus write to a timing
     // register in the interval leaves it unjudged; a SET does not)
-    pulse_axis_rules x_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_x), .dir(pins_dir_x),
-        .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
-        .settings_written(timing_written));
-    pulse_axis_rules y_axis (.clock(clock), .reset_n(reset_n), .step(pins_step_y), .dir(pins_dir_y),
-        .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
-        .settings_written(timing_written));
     // every STEP pulse on a pin answers a step request: of the interpolator
-    // (steps_step_*) or of the direct pulse generator (PULSE, PULSE_COUNT_*)
-    pulse_requests x_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
-        .step(pins_step_x));
-    pulse_requests y_requests (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
-        .step(pins_step_y));
+    // (steps_step) or of the direct pulse generator (PULSE, PULSE_COUNT_*)
+    genvar axis;
+    generate for (axis = 0; axis < AXES; axis = axis + 1) begin : axes
+        pulse_axis_rules timing (.clock(clock), .reset_n(reset_n), .step(pins_step[axis]), .dir(pins_dir[axis]),
+            .width(model_step_width), .space(model_step_space), .setup(model_dir_setup), .hold(model_dir_hold),
+            .settings_written(timing_written));
+        pulse_requests requests (.clock(clock), .reset_n(reset_n),
+            .request(steps_step[axis] || direct_request[axis]), .step(pins_step[axis]));
+    end endgenerate
     // POS_X counts the STEP pulses that left the X pin, +1 where DIR (without
     // DIR_POLARITY) is high, -1 where low, at the edge the pin rises;
     // COMMAND.CLEAR_POSITION zeroes it (docs/registers.md, rtl/regs/pulse_out.py)
     reg p_pins_step_x = 0, cleared_position = 0, clear_position_due = 0;
     reg [1:0] p_polarity = 0;
     reg [31:0] position_x = 0, position_x_read = 0;
-    wire step_x_rose = pins_step_x && !p_pins_step_x && !cleared_position;
-    wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir_x ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
+    wire step_x_rose = pins_step[0] && !p_pins_step_x && !cleared_position;
+    wire [31:0] position_x_now = position_x + (step_x_rose ? ((pins_dir[0] ^ p_polarity[0]) ? 32'd1 : 32'hffffffff) : 32'd0);
     always @(posedge clock) begin
-        p_pins_step_x <= pins_step_x;
+        p_pins_step_x <= pins_step[0];
         p_polarity <= model_dir_polarity;
         clear_position_due <= reset_n && stage_write && stage_addr == REG_COMMAND
                               && stage_data[COMMAND_CLEAR_POSITION_LSB] && stage_mask[COMMAND_CLEAR_POSITION_LSB];
@@ -272,26 +275,30 @@ module regs_fifo_harness #(
         position_x <= (!reset_n || clear_position_due) ? 32'd0 : position_x_now;
         position_x_read <= position_x_now;
     end
-    always @(posedge clock) if (reset_n && read_now && l_addr == REG_POS_X) begin
+    always @(posedge clock) if (reset_n && read_now && l_offset == REG_POS_X) begin
         pulse_position_x: assert(l_rdata == position_x_read);
     end
 `ifdef POSITION_WITHOUT_HOMING
     // HOME zeroes the homed axis's position where its filtered switch
     // releases (docs/machine.md), which this model does not follow: no HOME
     // (0x7C) here; sim/card/test_homing.py checks the zeroing
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_HOME));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_HOME));
 `endif
 `ifdef DIRECT_COUNTS
-    // direct mode (docs/registers.md): a PULSE_COUNT_X write of a signed n
-    // gives no more than |n| X pulses (pulse_rules.sv), judged from a write
+    // direct mode (docs/registers.md): a PULSE_COUNT write of a signed n
+    // gives no more than |n| pulses of its axis (pulse_rules.sv), on every
+    // axis (at any of its register's offsets), judged from a write
     // taken with CONTROL.MODE = 1 and all bytes enabled, until MODE is
     // cleared, a COMMAND write (SOFT_RESET drops the pulses) or the next
     // write.  With MACHINE_RUNNING nothing halts the card and no HOME takes
     // the pulses.
-    direct_count_rules x_direct (.clock(clock), .reset_n(reset_n),
-        .drop(!model_control[CONTROL_MODE_LSB] || (stage_write && stage_addr == REG_COMMAND)),
-        .count_write(stage_write && stage_addr == REG_PULSE_COUNT_X), .judge(stage_mask == 32'hFFFFFFFF),
-        .count(stage_data), .request(direct_request_x));
+    genvar counted;
+    generate for (counted = 0; counted < AXES; counted = counted + 1) begin : direct_counts
+        direct_count_rules rules (.clock(clock), .reset_n(reset_n),
+            .drop(!model_control[CONTROL_MODE_LSB] || (stage_write && stage_addr == REG_COMMAND)),
+            .count_write(stage_write && stage_addr == axis_pulse_count(counted)), .judge(stage_mask == 32'hFFFFFFFF),
+            .count(stage_data), .request(direct_request[counted]));
+    end endgenerate
 `endif
 `ifdef PULSE_PACED
     // every step request leaves on its pin: while one waits, a STEP edge
@@ -302,25 +309,26 @@ module regs_fifo_harness #(
     // (no SET of STEP_WIDTH, DIR_SETUP, DIR_HOLD, STEP_SPACE), nothing drops the queue
     // (no COMMAND write)
     always @(*) begin
-        if (!p_advance) assume(!steps_step_x && !steps_step_y);
+        if (!p_advance) assume(steps_step == 0);
         assume(!(set_strobe && (set_index == SET_STEP_WIDTH || set_index == SET_DIR_SETUP || set_index == SET_DIR_HOLD
                                 || set_index == SET_STEP_SPACE)));
-        assume(!(l_we && !l_space && l_addr == REG_COMMAND));
+        assume(!(l_we && !l_space && l_offset == REG_COMMAND));
     end
     wire [9:0] step_period = model_step_width + model_step_space + model_dir_setup + model_dir_hold
                              + `PULSE_QUEUE_CLOCKS;
-    pulse_progress x_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_x || direct_request_x),
-        .step(pins_step_x), .period(step_period));
-    pulse_progress y_progress (.clock(clock), .reset_n(reset_n), .request(steps_step_y || direct_request_y),
-        .step(pins_step_y), .period(step_period));
+    genvar paced;
+    generate for (paced = 0; paced < AXES; paced = paced + 1) begin : progress
+        pulse_progress rule (.clock(clock), .reset_n(reset_n), .request(steps_step[paced] || direct_request[paced]),
+            .step(pins_step[paced]), .period(step_period));
+    end endgenerate
 `endif
 `ifdef PULSE_TIMING_BY_SET
     // the host sets the pulse timing between moves (SET, which waits until the
     // outputs are idle) and the DIR polarity before: no bus write of
     // STEP_WIDTH, DIR_SETUP, DIR_HOLD, DIR_POLARITY, STEP_SPACE
-    always @(*) assume(!(l_we && !l_space && (l_addr == REG_STEP_WIDTH || l_addr == REG_DIR_SETUP
-                                               || l_addr == REG_DIR_HOLD || l_addr == REG_DIR_POLARITY
-                                               || l_addr == REG_STEP_SPACE)));
+    always @(*) assume(!(l_we && !l_space && (l_offset == REG_STEP_WIDTH || l_offset == REG_DIR_SETUP
+                                               || l_offset == REG_DIR_HOLD || l_offset == REG_DIR_POLARITY
+                                               || l_offset == REG_STEP_SPACE)));
 `endif
     // a SET of a timing register waits until the outputs are quiet and never
     // changes a pulse under way (docs/instructions.md): it leaves nothing
@@ -330,7 +338,7 @@ module regs_fifo_harness #(
 `ifndef STEP_MODES_FREE
     // the pins' rules here are those of step/dir mode, STEP_MODE's reset: no
     // bus write of STEP_MODE (the other modes: sim/card/test_card_units.py)
-    always @(*) assume(!(l_we && !l_space && l_addr == REG_STEP_MODE));
+    always @(*) assume(!(l_we && !l_space && l_offset == REG_STEP_MODE));
 `endif
 `ifdef REGS_FIFO_INVARIANTS
 `include "regs_fifo_invariants.vh"
