@@ -14,11 +14,15 @@ reads 1 until a write of 1 to it; INT_STATUS.CLAMPED reads 1 only after a
 write out of a register's range; offsets the table does not list read 0.
 """
 from models import registers as regmap
+from models.parameters import AXES
 
 COMMAND_READS_ZERO = ("COMMAND",)   # "one-shot actions (read as 0)"
 # The harness signal that clears each RW field with ``cleared`` (the condition
 # rtl/regs_fifo.py drives the register's hw bits with): its model clears it too.
 CLEARED_BY = {("MACHINE_CONTROL", "DRIVE_ENABLE"): "guard_stopped"}
+# the registers as the proved build (gen/: the default axes) has them: the input
+# registers keep the fields of its inputs only (``models.registers.built_register``)
+BUILT = tuple(regmap.built_register(reg, AXES.default) for reg in regmap.REGISTERS)
 
 
 def _mask(reg):
@@ -26,6 +30,14 @@ def _mask(reg):
     for item in reg.fields:
         mask |= item.mask
     return mask
+
+
+def _bus_write(reg):
+    """The condition of a bus write to ``reg`` in the last clock: at its offset, or at its
+    alias in BAR2's per-axis blocks (X's and Y's registers, ``models.registers.axis_aliases``)."""
+    offsets = [reg.offset] + [bar2 for bar2, bar0 in regmap.axis_aliases().items() if bar0 == reg.offset]
+    at = " || ".join(f"stage_addr == 16'h{offset:04X}" for offset in offsets)
+    return f"stage_write && ({at})" if len(offsets) > 1 else f"stage_write && {at}"
 
 
 def _clamp_function(reg):
@@ -52,10 +64,10 @@ def _clamped_only_after_a_clamp():
     a WP register with a range counts whatever its value (its range is signed;
     counting more writes only weakens the rule, never fails it wrongly)."""
     causes = []
-    for reg in regmap.REGISTERS:
+    for reg in BUILT:
         if reg.minimum is None and reg.maximum is None:
             continue
-        write = f"stage_write && stage_addr == 16'h{reg.offset:04X}"
+        write = _bus_write(reg)
         if reg.access != "RW":
             causes.append(f"({write})")
             continue
@@ -116,7 +128,7 @@ def table_properties():
              "// bus write of the last clock (stage_*), SET commands (set_strobe, set_index,",
              "// set_value)."]
     listed = []
-    for reg in regmap.REGISTERS:
+    for reg in BUILT:
         listed.append(reg.offset)
         upper = reg.name.lower()
         mask = _mask(reg)
@@ -132,7 +144,7 @@ def table_properties():
                              f"model_{upper} <= clamp_{upper}(set_value);")
             cleared = _cleared_mask(reg)
             keep = f" & ~({cleared})" if cleared else ""
-            lines.append(f"        else if (stage_write && stage_addr == 16'h{reg.offset:04X})")
+            lines.append(f"        else if ({_bus_write(reg)})")
             lines.append(f"            model_{upper} <= clamp_{upper}(({{{32 - width}'h0, model_{upper}}} & ~stage_mask)"
                          f" | (stage_data & stage_mask)){keep};")
             if cleared:
