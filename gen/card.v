@@ -370,7 +370,7 @@ wire card_core0_regs_fifo1_reg_word42_mine;
 wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire card_core0_regs_fifo1_reg_word42_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word42_written;
+wire [1:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
 wire [3:0] card_core0_regs_fifo1_reg_word43_honoured;
@@ -396,7 +396,7 @@ wire card_core0_regs_fifo1_reg_word45_mine;
 wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-reg [9:0] card_core0_regs_fifo1_reg_word45_written;
+wire [9:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
 wire [9:0] card_core0_regs_fifo1_reg_word46_honoured;
@@ -408,6 +408,7 @@ wire [9:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
 reg [9:0] card_core0_regs_fifo1_reg_word46__store31_word_hw;
+wire card_core0_regs_fifo1_reg_word47_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
 reg card_core0_regs_fifo1_reg_word47_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
@@ -416,9 +417,11 @@ wire card_core0_regs_fifo1_reg_word47_mine;
 wire card_core0_regs_fifo1_reg_word47_mine_write;
 wire card_core0_regs_fifo1_reg_word47_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word47_written;
+wire [15:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word47__limit32_whole;
+wire card_core0_regs_fifo1_reg_word47__above20_bus_zero;
 reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
@@ -434,65 +437,95 @@ wire card_core0_regs_fifo1_reg_word50_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
 wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word51_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word51_honoured;
 reg card_core0_regs_fifo1_reg_word51_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word51_shown;
 reg card_core0_regs_fifo1_reg_word51_clamped;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
+wire card_core0_regs_fifo1_reg_word51_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word51_written;
+reg [15:0] card_core0_regs_fifo1_reg_word51_written;
 reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
 wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word51__limit33_whole;
+wire card_core0_regs_fifo1_reg_word51__above21_bus_zero;
+wire card_core0_regs_fifo1_reg_word51__above21_set_zero;
+wire card_core0_regs_fifo1_reg_word52_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word52_honoured;
 reg card_core0_regs_fifo1_reg_word52_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word52_shown;
 reg card_core0_regs_fifo1_reg_word52_clamped;
 wire card_core0_regs_fifo1_reg_word52_mine;
 wire card_core0_regs_fifo1_reg_word52_mine_write;
+wire card_core0_regs_fifo1_reg_word52_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word52_written;
+reg [15:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word52__limit34_whole;
+wire card_core0_regs_fifo1_reg_word52__above22_bus_zero;
+wire card_core0_regs_fifo1_reg_word52__above22_set_zero;
+wire card_core0_regs_fifo1_reg_word53_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word53_honoured;
 reg card_core0_regs_fifo1_reg_word53_out_of_range;
 reg card_core0_regs_fifo1_reg_word53_clamped;
 wire card_core0_regs_fifo1_reg_word53_mine;
 wire card_core0_regs_fifo1_reg_word53_mine_write;
+wire card_core0_regs_fifo1_reg_word53_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word53_written;
+reg [15:0] card_core0_regs_fifo1_reg_word53_written;
 reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
 wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word53__limit35_whole;
+wire card_core0_regs_fifo1_reg_word53__above23_bus_zero;
+wire card_core0_regs_fifo1_reg_word53__above23_set_zero;
+wire card_core0_regs_fifo1_reg_word54_zero_above;
 reg [7:0] card_core0_regs_fifo1_reg_word54_honoured;
 reg card_core0_regs_fifo1_reg_word54_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word54_shown;
 reg card_core0_regs_fifo1_reg_word54_clamped;
 wire card_core0_regs_fifo1_reg_word54_mine;
 wire card_core0_regs_fifo1_reg_word54_mine_write;
+wire card_core0_regs_fifo1_reg_word54_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word54_written;
+reg [7:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
+wire [8:0] card_core0_regs_fifo1_reg_word54__limit36_whole;
+wire card_core0_regs_fifo1_reg_word54__above24_bus_zero;
+wire card_core0_regs_fifo1_reg_word54__above24_set_zero;
+wire card_core0_regs_fifo1_reg_word55_zero_above;
 reg [7:0] card_core0_regs_fifo1_reg_word55_honoured;
 reg card_core0_regs_fifo1_reg_word55_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word55_shown;
 reg card_core0_regs_fifo1_reg_word55_clamped;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
+wire card_core0_regs_fifo1_reg_word55_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word55_written;
+reg [7:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
+wire [8:0] card_core0_regs_fifo1_reg_word55__limit37_whole;
+wire card_core0_regs_fifo1_reg_word55__above25_bus_zero;
+wire card_core0_regs_fifo1_reg_word55__above25_set_zero;
+wire card_core0_regs_fifo1_reg_word56_zero_above;
 reg [7:0] card_core0_regs_fifo1_reg_word56_honoured;
 reg card_core0_regs_fifo1_reg_word56_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word56_shown;
 reg card_core0_regs_fifo1_reg_word56_clamped;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire card_core0_regs_fifo1_reg_word56_mine_write;
+wire card_core0_regs_fifo1_reg_word56_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word56_written;
+reg [7:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
+wire [8:0] card_core0_regs_fifo1_reg_word56__limit38_whole;
+wire card_core0_regs_fifo1_reg_word56__above26_bus_zero;
+wire card_core0_regs_fifo1_reg_word56__above26_set_zero;
 wire [5:0] card_core0_regs_fifo1_reg_word57_honoured;
 wire card_core0_regs_fifo1_reg_word57_out_of_range;
 reg [5:0] card_core0_regs_fifo1_reg_word57_shown;
@@ -501,29 +534,42 @@ wire card_core0_regs_fifo1_reg_word57_mine;
 wire card_core0_regs_fifo1_reg_word57_mine_write;
 wire card_core0_regs_fifo1_reg_word57_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
-reg [5:0] card_core0_regs_fifo1_reg_word57_written;
+wire [5:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word58_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word58_honoured;
 reg card_core0_regs_fifo1_reg_word58_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word58_shown;
 reg card_core0_regs_fifo1_reg_word58_clamped;
 wire card_core0_regs_fifo1_reg_word58_mine;
 wire card_core0_regs_fifo1_reg_word58_mine_write;
+wire card_core0_regs_fifo1_reg_word58_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word58_written;
+reg [15:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word58__limit40_whole;
+wire card_core0_regs_fifo1_reg_word58__above27_bus_zero;
+wire card_core0_regs_fifo1_reg_word58__above27_set_zero;
+wire card_core0_regs_fifo1_reg_word59_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word59_honoured;
 reg card_core0_regs_fifo1_reg_word59_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word59_shown;
 reg card_core0_regs_fifo1_reg_word59_clamped;
 wire card_core0_regs_fifo1_reg_word59_mine;
 wire card_core0_regs_fifo1_reg_word59_mine_write;
+wire card_core0_regs_fifo1_reg_word59_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word59_written;
+reg [15:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word59__limit41_whole;
+wire card_core0_regs_fifo1_reg_word59__above28_bus_zero;
+wire card_core0_regs_fifo1_reg_word59__above28_set_zero;
+wire card_core0_regs_fifo1_reg_word60_zero_above;
+wire card_core0_regs_fifo1_reg_word60_ones_above;
+wire card_core0_regs_fifo1_reg_word60_sign;
 reg [23:0] card_core0_regs_fifo1_reg_word60_honoured;
 reg card_core0_regs_fifo1_reg_word60_out_of_range;
 reg [23:0] card_core0_regs_fifo1_reg_word60_shown;
@@ -531,11 +577,17 @@ reg card_core0_regs_fifo1_reg_word60_clamped;
 wire card_core0_regs_fifo1_reg_word60_mine;
 wire card_core0_regs_fifo1_reg_word60_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word60_written;
+wire [23:0] card_core0_regs_fifo1_reg_word60_written;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word60__above29_bus_ones;
+wire card_core0_regs_fifo1_reg_word60__above29_bus_sign;
+wire card_core0_regs_fifo1_reg_word60__above29_bus_zero;
 reg card_core0_regs_fifo1_reg_word60__store42_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word60__store42_word_value;
+wire card_core0_regs_fifo1_reg_word61_zero_above;
+wire card_core0_regs_fifo1_reg_word61_ones_above;
+wire card_core0_regs_fifo1_reg_word61_sign;
 reg [23:0] card_core0_regs_fifo1_reg_word61_honoured;
 reg card_core0_regs_fifo1_reg_word61_out_of_range;
 reg [23:0] card_core0_regs_fifo1_reg_word61_shown;
@@ -543,9 +595,12 @@ reg card_core0_regs_fifo1_reg_word61_clamped;
 wire card_core0_regs_fifo1_reg_word61_mine;
 wire card_core0_regs_fifo1_reg_word61_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word61_written;
+wire [23:0] card_core0_regs_fifo1_reg_word61_written;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word61__above30_bus_ones;
+wire card_core0_regs_fifo1_reg_word61__above30_bus_sign;
+wire card_core0_regs_fifo1_reg_word61__above30_bus_zero;
 reg card_core0_regs_fifo1_reg_word61__store43_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word61__store43_word_value;
 wire [31:0] card_core0_regs_fifo1_reg_word62_shown;
@@ -570,7 +625,7 @@ wire card_core0_regs_fifo1_reg_word65_mine;
 wire card_core0_regs_fifo1_reg_word65_mine_write;
 wire card_core0_regs_fifo1_reg_word65_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word65_written;
+wire [1:0] card_core0_regs_fifo1_reg_word65_written;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
 wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
 reg [19:0] card_core0_regs_fifo1_reg_word66_shown;
@@ -591,9 +646,10 @@ wire card_core0_regs_fifo1_reg_word68_mine;
 wire card_core0_regs_fifo1_reg_word68_mine_write;
 wire card_core0_regs_fifo1_reg_word68_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word68_written;
+wire [6:0] card_core0_regs_fifo1_reg_word68_written;
 reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
 wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word69_zero_above;
 reg [3:0] card_core0_regs_fifo1_reg_word69_honoured;
 reg card_core0_regs_fifo1_reg_word69_out_of_range;
 reg [3:0] card_core0_regs_fifo1_reg_word69_shown;
@@ -602,9 +658,12 @@ wire card_core0_regs_fifo1_reg_word69_mine;
 wire card_core0_regs_fifo1_reg_word69_mine_write;
 wire card_core0_regs_fifo1_reg_word69_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word69_written;
+wire [3:0] card_core0_regs_fifo1_reg_word69_written;
 reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
 wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
+wire [4:0] card_core0_regs_fifo1_reg_word69__limit46_whole;
+wire card_core0_regs_fifo1_reg_word69__above31_bus_zero;
+wire card_core0_regs_fifo1_reg_word70_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
 reg card_core0_regs_fifo1_reg_word70_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
@@ -613,18 +672,23 @@ wire card_core0_regs_fifo1_reg_word70_mine;
 wire card_core0_regs_fifo1_reg_word70_mine_write;
 wire card_core0_regs_fifo1_reg_word70_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word70_written;
+wire [15:0] card_core0_regs_fifo1_reg_word70_written;
 reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
 wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word70__limit47_whole;
+wire card_core0_regs_fifo1_reg_word70__above32_bus_zero;
+wire card_core0_regs_fifo1_reg_word71_zero_above;
 reg [23:0] card_core0_regs_fifo1_reg_word71_honoured;
 reg card_core0_regs_fifo1_reg_word71_out_of_range;
 reg card_core0_regs_fifo1_reg_word71_clamped;
 wire card_core0_regs_fifo1_reg_word71_mine;
 wire card_core0_regs_fifo1_reg_word71_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word71_written;
+wire [23:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
+wire [24:0] card_core0_regs_fifo1_reg_word71__limit48_whole;
+wire card_core0_regs_fifo1_reg_word71__above33_bus_zero;
 reg card_core0_regs_fifo1_reg_word71__store48_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word71__store48_word_value;
 wire [6:0] card_core0_regs_fifo1_reg_word72_honoured;
@@ -644,6 +708,7 @@ wire card_core0_regs_fifo1_reg_word73_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word73_chain_out_data;
 wire card_core0_regs_fifo1_reg_word73_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word74_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word74_honoured;
 reg card_core0_regs_fifo1_reg_word74_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word74_shown;
@@ -652,9 +717,12 @@ wire card_core0_regs_fifo1_reg_word74_mine;
 wire card_core0_regs_fifo1_reg_word74_mine_write;
 wire card_core0_regs_fifo1_reg_word74_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word74_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word74_written;
+wire [15:0] card_core0_regs_fifo1_reg_word74_written;
 reg [31:0] card_core0_regs_fifo1_reg_word74_chain_out_data;
 wire card_core0_regs_fifo1_reg_word74_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word74__limit50_whole;
+wire card_core0_regs_fifo1_reg_word74__above34_bus_zero;
+wire card_core0_regs_fifo1_reg_word75_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word75_honoured;
 reg card_core0_regs_fifo1_reg_word75_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word75_shown;
@@ -663,9 +731,12 @@ wire card_core0_regs_fifo1_reg_word75_mine;
 wire card_core0_regs_fifo1_reg_word75_mine_write;
 wire card_core0_regs_fifo1_reg_word75_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word75_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word75_written;
+wire [15:0] card_core0_regs_fifo1_reg_word75_written;
 reg [31:0] card_core0_regs_fifo1_reg_word75_chain_out_data;
 wire card_core0_regs_fifo1_reg_word75_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word75__limit51_whole;
+wire card_core0_regs_fifo1_reg_word75__above35_bus_zero;
+wire card_core0_regs_fifo1_reg_word76_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word76_honoured;
 reg card_core0_regs_fifo1_reg_word76_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word76_shown;
@@ -674,9 +745,12 @@ wire card_core0_regs_fifo1_reg_word76_mine;
 wire card_core0_regs_fifo1_reg_word76_mine_write;
 wire card_core0_regs_fifo1_reg_word76_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word76_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word76_written;
+wire [15:0] card_core0_regs_fifo1_reg_word76_written;
 reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
 wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
+wire [16:0] card_core0_regs_fifo1_reg_word76__limit52_whole;
+wire card_core0_regs_fifo1_reg_word76__above36_bus_zero;
+wire card_core0_regs_fifo1_reg_word77_zero_above;
 reg [22:0] card_core0_regs_fifo1_reg_word77_honoured;
 reg card_core0_regs_fifo1_reg_word77_out_of_range;
 reg [22:0] card_core0_regs_fifo1_reg_word77_shown;
@@ -685,19 +759,27 @@ wire card_core0_regs_fifo1_reg_word77_mine;
 wire card_core0_regs_fifo1_reg_word77_mine_write;
 wire card_core0_regs_fifo1_reg_word77_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word77_written;
+wire [22:0] card_core0_regs_fifo1_reg_word77_written;
 reg [31:0] card_core0_regs_fifo1_reg_word77_chain_out_data;
 wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word77__limit53_whole;
+wire card_core0_regs_fifo1_reg_word77__above37_bus_zero;
+wire card_core0_regs_fifo1_reg_word78_zero_above;
 reg [7:0] card_core0_regs_fifo1_reg_word78_honoured;
 reg card_core0_regs_fifo1_reg_word78_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word78_shown;
 reg card_core0_regs_fifo1_reg_word78_clamped;
 wire card_core0_regs_fifo1_reg_word78_mine;
 wire card_core0_regs_fifo1_reg_word78_mine_write;
+wire card_core0_regs_fifo1_reg_word78_set_selected;
 wire [31:0] card_core0_regs_fifo1_reg_word78_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word78_written;
+reg [7:0] card_core0_regs_fifo1_reg_word78_written;
 reg [31:0] card_core0_regs_fifo1_reg_word78_chain_out_data;
 wire card_core0_regs_fifo1_reg_word78_chain_out_clamped;
+wire [8:0] card_core0_regs_fifo1_reg_word78__limit54_whole;
+wire card_core0_regs_fifo1_reg_word78__above38_bus_zero;
+wire card_core0_regs_fifo1_reg_word78__above38_set_zero;
+wire card_core0_regs_fifo1_reg_word79_zero_above;
 reg [1:0] card_core0_regs_fifo1_reg_word79_honoured;
 reg card_core0_regs_fifo1_reg_word79_out_of_range;
 reg card_core0_regs_fifo1_reg_word79_clamped;
@@ -705,9 +787,11 @@ wire card_core0_regs_fifo1_reg_word79_mine;
 wire card_core0_regs_fifo1_reg_word79_mine_write;
 wire card_core0_regs_fifo1_reg_word79_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word79_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word79_written;
+wire [1:0] card_core0_regs_fifo1_reg_word79_written;
 reg [31:0] card_core0_regs_fifo1_reg_word79_chain_out_data;
 wire card_core0_regs_fifo1_reg_word79_chain_out_clamped;
+wire [2:0] card_core0_regs_fifo1_reg_word79__limit55_whole;
+wire card_core0_regs_fifo1_reg_word79__above39_bus_zero;
 reg [6:0] card_core0_regs_fifo1_reg_word80_shown;
 wire card_core0_regs_fifo1_reg_word80_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word80_shown_wide;
@@ -2538,18 +2622,12 @@ assign card_core0_regs_fifo1_reg_word42_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word42_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word42_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written;
 
 
 
@@ -2598,7 +2676,7 @@ assign card_core0_regs_fifo1_reg_word43_written = (card_core0_regs_fifo1_written
 
 
 
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[4-1:0];
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written;
 
 
 
@@ -2667,18 +2745,12 @@ assign card_core0_regs_fifo1_reg_word45_shown_wide = {22'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word45_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[10-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[10-1:0] & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[10-1:0];
+assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written;
 
 
 
@@ -2727,7 +2799,7 @@ assign card_core0_regs_fifo1_reg_word46_written = (card_core0_regs_fifo1_written
 
 
 
-assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[10-1:0];
+assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written;
 
 
 
@@ -2771,26 +2843,32 @@ assign card_core0_regs_fifo1_reg_word47_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word47_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit32_clamp_above_power_of_two
+
+assign card_core0_regs_fifo1_reg_word47__limit32_whole = {(!card_core0_regs_fifo1_reg_word47_zero_above), card_core0_regs_fifo1_reg_word47_written};
+
+
+always @(card_core0_regs_fifo1_reg_word47__limit32_whole, card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit32_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word47_written[32-1:16] != 0)) begin
+    if ((card_core0_regs_fifo1_reg_word47__limit32_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word47_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[16-1:0];
+        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written;
         card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word47__above20_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word47_zero_above = card_core0_regs_fifo1_reg_word47__above20_bus_zero;
 
 
 
@@ -2900,29 +2978,49 @@ assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word51_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word51_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word51_set_selected) begin
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit33_clamp_unsigned
+
+assign card_core0_regs_fifo1_reg_word51_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0));
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit33_whole = {(!card_core0_regs_fifo1_reg_word51_zero_above), card_core0_regs_fifo1_reg_word51_written};
+
+
+always @(card_core0_regs_fifo1_reg_word51__limit33_whole, card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit33_clamp_unsigned
     card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word51_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word51_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word51__limit33_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word51__limit33_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word51_honoured = 1;
     end
-    else if (((card_core0_regs_fifo1_reg_word51_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word51_written[16-1:0] > 32768))) begin
+    else if (((card_core0_regs_fifo1_reg_word51__limit33_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word51__limit33_whole[16-1:0] > 32768))) begin
         card_core0_regs_fifo1_reg_word51_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[16-1:0];
+        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written;
         card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word51__above21_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word51__above21_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word51_zero_above = card_core0_regs_fifo1_reg_word51_set_selected ? card_core0_regs_fifo1_reg_word51__above21_set_zero : card_core0_regs_fifo1_reg_word51__above21_bus_zero;
 
 
 
@@ -2966,29 +3064,49 @@ assign card_core0_regs_fifo1_reg_word52_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word52_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word52_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word52_set_selected) begin
+        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word52_written = ((card_core0_regs_fifo1_reg_word52_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word52_written = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit34_clamp_unsigned
+
+assign card_core0_regs_fifo1_reg_word52_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1));
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit34_whole = {(!card_core0_regs_fifo1_reg_word52_zero_above), card_core0_regs_fifo1_reg_word52_written};
+
+
+always @(card_core0_regs_fifo1_reg_word52__limit34_whole, card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit34_clamp_unsigned
     card_core0_regs_fifo1_reg_word52_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word52_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word52_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word52__limit34_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word52__limit34_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word52_honoured = 1;
     end
-    else if (((card_core0_regs_fifo1_reg_word52_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word52_written[16-1:0] > 32768))) begin
+    else if (((card_core0_regs_fifo1_reg_word52__limit34_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word52__limit34_whole[16-1:0] > 32768))) begin
         card_core0_regs_fifo1_reg_word52_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written[16-1:0];
+        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written;
         card_core0_regs_fifo1_reg_word52_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word52__above22_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word52__above22_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word52_zero_above = card_core0_regs_fifo1_reg_word52_set_selected ? card_core0_regs_fifo1_reg_word52__above22_set_zero : card_core0_regs_fifo1_reg_word52__above22_bus_zero;
 
 
 
@@ -3032,26 +3150,46 @@ assign card_core0_regs_fifo1_reg_word53_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word53_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_ramp_step, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word53_set_selected) begin
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit35_clamp_above_power_of_two
+
+assign card_core0_regs_fifo1_reg_word53_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2));
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit35_whole = {(!card_core0_regs_fifo1_reg_word53_zero_above), card_core0_regs_fifo1_reg_word53_written};
+
+
+always @(card_core0_regs_fifo1_reg_word53__limit35_whole, card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit35_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word53_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word53_written[32-1:16] != 0)) begin
+    if ((card_core0_regs_fifo1_reg_word53__limit35_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word53_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[16-1:0];
+        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written;
         card_core0_regs_fifo1_reg_word53_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word53__above23_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word53__above23_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word53_zero_above = card_core0_regs_fifo1_reg_word53_set_selected ? card_core0_regs_fifo1_reg_word53__above23_set_zero : card_core0_regs_fifo1_reg_word53__above23_bus_zero;
 
 
 
@@ -3095,29 +3233,49 @@ assign card_core0_regs_fifo1_reg_word54_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
-        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word54_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word54_set_selected) begin
+        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_written = ((card_core0_regs_fifo1_reg_word54_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word54_written = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit36_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word54_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3));
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit36_whole = {(!card_core0_regs_fifo1_reg_word54_zero_above), card_core0_regs_fifo1_reg_word54_written};
+
+
+always @(card_core0_regs_fifo1_reg_word54__limit36_whole, card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit36_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word54_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word54_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word54_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word54__limit36_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word54__limit36_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word54_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:8] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word54__limit36_whole[9-1:8] != 0)) begin
         card_core0_regs_fifo1_reg_word54_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[8-1:0];
+        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written;
         card_core0_regs_fifo1_reg_word54_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word54__above24_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word54__above24_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word54_zero_above = card_core0_regs_fifo1_reg_word54_set_selected ? card_core0_regs_fifo1_reg_word54__above24_set_zero : card_core0_regs_fifo1_reg_word54__above24_bus_zero;
 
 
 
@@ -3161,29 +3319,49 @@ assign card_core0_regs_fifo1_reg_word55_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word55_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word55_set_selected) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit37_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word55_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4));
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit37_whole = {(!card_core0_regs_fifo1_reg_word55_zero_above), card_core0_regs_fifo1_reg_word55_written};
+
+
+always @(card_core0_regs_fifo1_reg_word55__limit37_whole, card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit37_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word55_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word55_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word55__limit37_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word55__limit37_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word55_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word55_written[32-1:8] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word55__limit37_whole[9-1:8] != 0)) begin
         card_core0_regs_fifo1_reg_word55_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[8-1:0];
+        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written;
         card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word55__above25_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word55__above25_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word55_zero_above = card_core0_regs_fifo1_reg_word55_set_selected ? card_core0_regs_fifo1_reg_word55__above25_set_zero : card_core0_regs_fifo1_reg_word55__above25_bus_zero;
 
 
 
@@ -3227,29 +3405,49 @@ assign card_core0_regs_fifo1_reg_word56_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
-        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word56_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word56_set_selected) begin
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_written = ((card_core0_regs_fifo1_reg_word56_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word56_written = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit38_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word56_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5));
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit38_whole = {(!card_core0_regs_fifo1_reg_word56_zero_above), card_core0_regs_fifo1_reg_word56_written};
+
+
+always @(card_core0_regs_fifo1_reg_word56__limit38_whole, card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit38_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word56_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word56_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word56__limit38_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word56__limit38_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word56_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word56_written[32-1:8] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word56__limit38_whole[9-1:8] != 0)) begin
         card_core0_regs_fifo1_reg_word56_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[8-1:0];
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written;
         card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word56__above26_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word56__above26_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word56_zero_above = card_core0_regs_fifo1_reg_word56_set_selected ? card_core0_regs_fifo1_reg_word56__above26_set_zero : card_core0_regs_fifo1_reg_word56__above26_bus_zero;
 
 
 
@@ -3293,18 +3491,12 @@ assign card_core0_regs_fifo1_reg_word57_shown_wide = {26'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word57_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word57_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word57_written = card_core0_regs_fifo1_set_value[6-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown_wide[6-1:0] & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[6-1:0];
+assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written;
 
 
 
@@ -3348,29 +3540,49 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
 
 
-always @(card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
-        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word58_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word58_set_selected) begin
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit40_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word58_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6));
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit40_whole = {(!card_core0_regs_fifo1_reg_word58_zero_above), card_core0_regs_fifo1_reg_word58_written};
+
+
+always @(card_core0_regs_fifo1_reg_word58__limit40_whole, card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit40_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word58_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word58_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word58__limit40_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word58__limit40_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word58_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word58_written[32-1:16] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word58__limit40_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word58_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[16-1:0];
+        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written;
         card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word58__above27_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word58__above27_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word58_zero_above = card_core0_regs_fifo1_reg_word58_set_selected ? card_core0_regs_fifo1_reg_word58__above27_set_zero : card_core0_regs_fifo1_reg_word58__above27_bus_zero;
 
 
 
@@ -3414,29 +3626,49 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
 
 
-always @(card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word59_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word59_set_selected) begin
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[16-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit41_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word59_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7));
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit41_whole = {(!card_core0_regs_fifo1_reg_word59_zero_above), card_core0_regs_fifo1_reg_word59_written};
+
+
+always @(card_core0_regs_fifo1_reg_word59__limit41_whole, card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit41_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word59_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word59_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word59__limit41_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word59__limit41_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word59_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word59_written[32-1:16] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word59__limit41_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word59_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[16-1:0];
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written;
         card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word59__above28_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word59__above28_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word59_zero_above = card_core0_regs_fifo1_reg_word59_set_selected ? card_core0_regs_fifo1_reg_word59__above28_set_zero : card_core0_regs_fifo1_reg_word59__above28_bus_zero;
 
 
 
@@ -3481,15 +3713,15 @@ assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word60_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word60_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit42_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word60_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word60_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written[24-1:0];
+always @(card_core0_regs_fifo1_reg_word60_zero_above, card_core0_regs_fifo1_reg_word60_sign, card_core0_regs_fifo1_reg_word60_ones_above, card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit42_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word60_zero_above && (!card_core0_regs_fifo1_reg_word60_written[(24 - 1)])) || (card_core0_regs_fifo1_reg_word60_ones_above && card_core0_regs_fifo1_reg_word60_written[(24 - 1)]))) begin
+        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written;
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b0;
     end
-    else if (card_core0_regs_fifo1_reg_word60_written[31]) begin
+    else if (card_core0_regs_fifo1_reg_word60_sign) begin
         card_core0_regs_fifo1_reg_word60_honoured = 8388608;
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
     end
@@ -3498,6 +3730,18 @@ always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word60__above29_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word60__above29_bus_ones = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
+assign card_core0_regs_fifo1_reg_word60__above29_bus_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
+
+
+
+assign card_core0_regs_fifo1_reg_word60_zero_above = card_core0_regs_fifo1_reg_word60__above29_bus_zero;
+assign card_core0_regs_fifo1_reg_word60_ones_above = card_core0_regs_fifo1_reg_word60__above29_bus_ones;
+assign card_core0_regs_fifo1_reg_word60_sign = card_core0_regs_fifo1_reg_word60__above29_bus_sign;
 
 
 
@@ -3545,15 +3789,15 @@ assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_reg_word61__limit43_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word61_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word61_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[24-1:0];
+always @(card_core0_regs_fifo1_reg_word61_zero_above, card_core0_regs_fifo1_reg_word61_sign, card_core0_regs_fifo1_reg_word61_ones_above, card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_reg_word61__limit43_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word61_zero_above && (!card_core0_regs_fifo1_reg_word61_written[(24 - 1)])) || (card_core0_regs_fifo1_reg_word61_ones_above && card_core0_regs_fifo1_reg_word61_written[(24 - 1)]))) begin
+        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written;
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b0;
     end
-    else if (card_core0_regs_fifo1_reg_word61_written[31]) begin
+    else if (card_core0_regs_fifo1_reg_word61_sign) begin
         card_core0_regs_fifo1_reg_word61_honoured = 8388608;
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b1;
     end
@@ -3562,6 +3806,18 @@ always @(card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word61__above30_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word61__above30_bus_ones = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
+assign card_core0_regs_fifo1_reg_word61__above30_bus_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
+
+
+
+assign card_core0_regs_fifo1_reg_word61_zero_above = card_core0_regs_fifo1_reg_word61__above30_bus_zero;
+assign card_core0_regs_fifo1_reg_word61_ones_above = card_core0_regs_fifo1_reg_word61__above30_bus_ones;
+assign card_core0_regs_fifo1_reg_word61_sign = card_core0_regs_fifo1_reg_word61__above30_bus_sign;
 
 
 
@@ -3674,18 +3930,12 @@ assign card_core0_regs_fifo1_reg_word65_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_written_addr == 96);
 
 
-always @(card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word65_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word65_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word65_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_reg_word65_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written;
 
 
 
@@ -3776,18 +4026,12 @@ assign card_core0_regs_fifo1_reg_word68_shown_wide = {25'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 108);
 
 
-always @(card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word68_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word68_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word68_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[7-1:0];
+assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written;
 
 
 
@@ -3831,29 +4075,35 @@ assign card_core0_regs_fifo1_reg_word69_shown_wide = {28'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_written_addr == 112);
 
 
-always @(card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word69_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word69_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word69_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word69_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word69_written = ((card_core0_regs_fifo1_reg_word69_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word69_written = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit46_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word69__limit46_whole = {(!card_core0_regs_fifo1_reg_word69_zero_above), card_core0_regs_fifo1_reg_word69_written};
+
+
+always @(card_core0_regs_fifo1_reg_word69__limit46_whole, card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit46_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word69_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word69_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word69_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word69__limit46_whole[5-1:1] == 0) && (card_core0_regs_fifo1_reg_word69__limit46_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word69_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word69_written[32-1:4] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word69__limit46_whole[5-1:4] != 0)) begin
         card_core0_regs_fifo1_reg_word69_honoured = 15;
     end
     else begin
-        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written[4-1:0];
+        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written;
         card_core0_regs_fifo1_reg_word69_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word69__above31_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:4] & card_core0_regs_fifo1_written_mask[32-1:4]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word69_zero_above = card_core0_regs_fifo1_reg_word69__above31_bus_zero;
 
 
 
@@ -3897,29 +4147,35 @@ assign card_core0_regs_fifo1_reg_word70_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 116);
 
 
-always @(card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word70_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word70_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word70_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit47_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word70__limit47_whole = {(!card_core0_regs_fifo1_reg_word70_zero_above), card_core0_regs_fifo1_reg_word70_written};
+
+
+always @(card_core0_regs_fifo1_reg_word70__limit47_whole, card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit47_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word70_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word70_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word70__limit47_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word70__limit47_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word70_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word70_written[32-1:16] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word70__limit47_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word70_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[16-1:0];
+        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written;
         card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word70__above32_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word70_zero_above = card_core0_regs_fifo1_reg_word70__above32_bus_zero;
 
 
 
@@ -3964,19 +4220,31 @@ assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word71_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word71_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit48_clamp_above_power_of_two
+
+assign card_core0_regs_fifo1_reg_word71__limit48_whole = {(!card_core0_regs_fifo1_reg_word71_zero_above), card_core0_regs_fifo1_reg_word71_written};
+
+
+always @(card_core0_regs_fifo1_reg_word71__limit48_whole, card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit48_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word71_written[32-1:24] != 0)) begin
+    if ((card_core0_regs_fifo1_reg_word71__limit48_whole[25-1:24] != 0)) begin
         card_core0_regs_fifo1_reg_word71_honoured = 16777215;
     end
     else begin
-        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written[24-1:0];
+        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written;
         card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word71__above33_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word71_zero_above = card_core0_regs_fifo1_reg_word71__above33_bus_zero;
 
 
 
@@ -4028,7 +4296,7 @@ assign card_core0_regs_fifo1_reg_word72_written = (card_core0_regs_fifo1_written
 
 
 
-assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[7-1:0];
+assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written;
 
 
 
@@ -4097,29 +4365,35 @@ assign card_core0_regs_fifo1_reg_word74_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_written_addr == 132);
 
 
-always @(card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word74_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word74_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word74_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word74_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word74_written = ((card_core0_regs_fifo1_reg_word74_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word74_written = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit50_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word74__limit50_whole = {(!card_core0_regs_fifo1_reg_word74_zero_above), card_core0_regs_fifo1_reg_word74_written};
+
+
+always @(card_core0_regs_fifo1_reg_word74__limit50_whole, card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit50_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word74_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word74_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word74_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word74__limit50_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word74__limit50_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word74_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word74_written[32-1:16] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word74__limit50_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word74_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_written[16-1:0];
+        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_written;
         card_core0_regs_fifo1_reg_word74_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word74__above34_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word74_zero_above = card_core0_regs_fifo1_reg_word74__above34_bus_zero;
 
 
 
@@ -4163,29 +4437,35 @@ assign card_core0_regs_fifo1_reg_word75_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_written_addr == 136);
 
 
-always @(card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word75_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word75_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word75_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word75_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word75_written = ((card_core0_regs_fifo1_reg_word75_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word75_written = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit51_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word75__limit51_whole = {(!card_core0_regs_fifo1_reg_word75_zero_above), card_core0_regs_fifo1_reg_word75_written};
+
+
+always @(card_core0_regs_fifo1_reg_word75__limit51_whole, card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit51_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word75_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word75_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word75_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word75__limit51_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word75__limit51_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word75_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word75_written[32-1:16] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word75__limit51_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word75_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written[16-1:0];
+        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written;
         card_core0_regs_fifo1_reg_word75_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word75__above35_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word75_zero_above = card_core0_regs_fifo1_reg_word75__above35_bus_zero;
 
 
 
@@ -4229,26 +4509,32 @@ assign card_core0_regs_fifo1_reg_word76_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_written_addr == 140);
 
 
-always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word76_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word76_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word76_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word76_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word76_written = ((card_core0_regs_fifo1_reg_word76_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word76_written = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit52_clamp_above_power_of_two
+
+assign card_core0_regs_fifo1_reg_word76__limit52_whole = {(!card_core0_regs_fifo1_reg_word76_zero_above), card_core0_regs_fifo1_reg_word76_written};
+
+
+always @(card_core0_regs_fifo1_reg_word76__limit52_whole, card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit52_clamp_above_power_of_two
     card_core0_regs_fifo1_reg_word76_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word76_written[32-1:16] != 0)) begin
+    if ((card_core0_regs_fifo1_reg_word76__limit52_whole[17-1:16] != 0)) begin
         card_core0_regs_fifo1_reg_word76_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written[16-1:0];
+        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written;
         card_core0_regs_fifo1_reg_word76_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word76__above36_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word76_zero_above = card_core0_regs_fifo1_reg_word76__above36_bus_zero;
 
 
 
@@ -4292,29 +4578,35 @@ assign card_core0_regs_fifo1_reg_word77_shown_wide = {9'h0, card_core0_regs_fifo
 assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_written_addr == 144);
 
 
-always @(card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word77_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word77_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word77_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word77_written = ((card_core0_regs_fifo1_reg_word77_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word77_written = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | (card_core0_regs_fifo1_written_data[23-1:0] & card_core0_regs_fifo1_written_mask[23-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit53_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word77__limit53_whole = {(!card_core0_regs_fifo1_reg_word77_zero_above), card_core0_regs_fifo1_reg_word77_written};
+
+
+always @(card_core0_regs_fifo1_reg_word77__limit53_whole, card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit53_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word77_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word77_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word77_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word77__limit53_whole[24-1:1] == 0) && (card_core0_regs_fifo1_reg_word77__limit53_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word77_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word77_written[32-1:23] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word77__limit53_whole[24-1:23] != 0)) begin
         card_core0_regs_fifo1_reg_word77_honoured = 8388607;
     end
     else begin
-        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written[23-1:0];
+        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written;
         card_core0_regs_fifo1_reg_word77_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word77__above37_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:23] & card_core0_regs_fifo1_written_mask[32-1:23]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word77_zero_above = card_core0_regs_fifo1_reg_word77__above37_bus_zero;
 
 
 
@@ -4358,29 +4650,49 @@ assign card_core0_regs_fifo1_reg_word78_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word78_mine_write = (card_core0_regs_fifo1_written_addr == 148);
 
 
-always @(card_core0_regs_fifo1_reg_word78_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word78_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8))) begin
-        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_set_value[32-1:0];
+always @(card_core0_regs_fifo1_reg_word78_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word78_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word78_merge_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word78_set_selected) begin
+        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_set_value[8-1:0];
     end
     else begin
-        card_core0_regs_fifo1_reg_word78_written = ((card_core0_regs_fifo1_reg_word78_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word78_written = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit54_clamp_unsigned_power_of_two
+
+assign card_core0_regs_fifo1_reg_word78_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8));
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit54_whole = {(!card_core0_regs_fifo1_reg_word78_zero_above), card_core0_regs_fifo1_reg_word78_written};
+
+
+always @(card_core0_regs_fifo1_reg_word78__limit54_whole, card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit54_clamp_unsigned_power_of_two
     card_core0_regs_fifo1_reg_word78_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word78_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word78_written[1-1:0] < 1))) begin
+    if (((card_core0_regs_fifo1_reg_word78__limit54_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word78__limit54_whole[1-1:0] < 1))) begin
         card_core0_regs_fifo1_reg_word78_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word78_written[32-1:8] != 0)) begin
+    else if ((card_core0_regs_fifo1_reg_word78__limit54_whole[9-1:8] != 0)) begin
         card_core0_regs_fifo1_reg_word78_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written[8-1:0];
+        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written;
         card_core0_regs_fifo1_reg_word78_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word78__above38_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word78__above38_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word78_zero_above = card_core0_regs_fifo1_reg_word78_set_selected ? card_core0_regs_fifo1_reg_word78__above38_set_zero : card_core0_regs_fifo1_reg_word78__above38_bus_zero;
 
 
 
@@ -4424,26 +4736,32 @@ assign card_core0_regs_fifo1_reg_word79_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word79_mine_write = (card_core0_regs_fifo1_written_addr == 152);
 
 
-always @(card_core0_regs_fifo1_reg_word79_shown_wide, card_core0_regs_fifo1_reg_word79_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word79_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word79_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word79_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word79_written = ((card_core0_regs_fifo1_reg_word79_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word79_written = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word79_written) begin: card_core0_regs_fifo1_reg_word79__limit55_clamp_above
+
+assign card_core0_regs_fifo1_reg_word79__limit55_whole = {(!card_core0_regs_fifo1_reg_word79_zero_above), card_core0_regs_fifo1_reg_word79_written};
+
+
+always @(card_core0_regs_fifo1_reg_word79__limit55_whole, card_core0_regs_fifo1_reg_word79_written) begin: card_core0_regs_fifo1_reg_word79__limit55_clamp_above
     card_core0_regs_fifo1_reg_word79_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word79_written[32-1:2] != 0) || (card_core0_regs_fifo1_reg_word79_written[2-1:0] > 2))) begin
+    if (((card_core0_regs_fifo1_reg_word79__limit55_whole[3-1:2] != 0) || (card_core0_regs_fifo1_reg_word79__limit55_whole[2-1:0] > 2))) begin
         card_core0_regs_fifo1_reg_word79_honoured = 2;
     end
     else begin
-        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_written[2-1:0];
+        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_written;
         card_core0_regs_fifo1_reg_word79_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word79__above39_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:2] & card_core0_regs_fifo1_written_mask[32-1:2]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word79_zero_above = card_core0_regs_fifo1_reg_word79__above39_bus_zero;
 
 
 

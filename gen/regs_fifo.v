@@ -277,7 +277,7 @@ wire reg_word1_mine;
 wire reg_word1_mine_write;
 wire reg_word1_set_mine;
 wire [31:0] reg_word1_shown_wide;
-reg [1:0] reg_word1_written;
+wire [1:0] reg_word1_written;
 reg [31:0] reg_word1_chain_out_data;
 wire reg_word1_chain_out_clamped;
 wire [3:0] reg_word2_honoured;
@@ -303,7 +303,7 @@ wire reg_word4_mine;
 wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
-reg [9:0] reg_word4_written;
+wire [9:0] reg_word4_written;
 reg [31:0] reg_word4_chain_out_data;
 wire reg_word4_chain_out_clamped;
 wire [9:0] reg_word5_honoured;
@@ -315,6 +315,7 @@ wire [9:0] reg_word5_written;
 reg [31:0] reg_word5_chain_out_data;
 wire reg_word5_chain_out_clamped;
 reg [9:0] reg_word5__store3_word_hw;
+wire reg_word6_zero_above;
 reg [15:0] reg_word6_honoured;
 reg reg_word6_out_of_range;
 reg [15:0] reg_word6_shown;
@@ -323,9 +324,11 @@ wire reg_word6_mine;
 wire reg_word6_mine_write;
 wire reg_word6_set_mine;
 wire [31:0] reg_word6_shown_wide;
-reg [31:0] reg_word6_written;
+wire [15:0] reg_word6_written;
 reg [31:0] reg_word6_chain_out_data;
 wire reg_word6_chain_out_clamped;
+wire [16:0] reg_word6__limit4_whole;
+wire reg_word6__above0_bus_zero;
 reg [15:0] reg_word7_shown;
 wire reg_word7_mine;
 wire [31:0] reg_word7_shown_wide;
@@ -341,65 +344,95 @@ wire reg_word9_mine;
 wire [31:0] reg_word9_shown_wide;
 reg [31:0] reg_word9_chain_out_data;
 wire reg_word9_chain_out_clamped;
+wire reg_word10_zero_above;
 reg [15:0] reg_word10_honoured;
 reg reg_word10_out_of_range;
 reg [15:0] reg_word10_shown;
 reg reg_word10_clamped;
 wire reg_word10_mine;
 wire reg_word10_mine_write;
+wire reg_word10_set_selected;
 wire [31:0] reg_word10_shown_wide;
-reg [31:0] reg_word10_written;
+reg [15:0] reg_word10_written;
 reg [31:0] reg_word10_chain_out_data;
 wire reg_word10_chain_out_clamped;
+wire [16:0] reg_word10__limit5_whole;
+wire reg_word10__above1_bus_zero;
+wire reg_word10__above1_set_zero;
+wire reg_word11_zero_above;
 reg [15:0] reg_word11_honoured;
 reg reg_word11_out_of_range;
 reg [15:0] reg_word11_shown;
 reg reg_word11_clamped;
 wire reg_word11_mine;
 wire reg_word11_mine_write;
+wire reg_word11_set_selected;
 wire [31:0] reg_word11_shown_wide;
-reg [31:0] reg_word11_written;
+reg [15:0] reg_word11_written;
 reg [31:0] reg_word11_chain_out_data;
 wire reg_word11_chain_out_clamped;
+wire [16:0] reg_word11__limit6_whole;
+wire reg_word11__above2_bus_zero;
+wire reg_word11__above2_set_zero;
+wire reg_word12_zero_above;
 reg [15:0] reg_word12_honoured;
 reg reg_word12_out_of_range;
 reg reg_word12_clamped;
 wire reg_word12_mine;
 wire reg_word12_mine_write;
+wire reg_word12_set_selected;
 wire [31:0] reg_word12_shown_wide;
-reg [31:0] reg_word12_written;
+reg [15:0] reg_word12_written;
 reg [31:0] reg_word12_chain_out_data;
 wire reg_word12_chain_out_clamped;
+wire [16:0] reg_word12__limit7_whole;
+wire reg_word12__above3_bus_zero;
+wire reg_word12__above3_set_zero;
+wire reg_word13_zero_above;
 reg [7:0] reg_word13_honoured;
 reg reg_word13_out_of_range;
 reg [7:0] reg_word13_shown;
 reg reg_word13_clamped;
 wire reg_word13_mine;
 wire reg_word13_mine_write;
+wire reg_word13_set_selected;
 wire [31:0] reg_word13_shown_wide;
-reg [31:0] reg_word13_written;
+reg [7:0] reg_word13_written;
 reg [31:0] reg_word13_chain_out_data;
 wire reg_word13_chain_out_clamped;
+wire [8:0] reg_word13__limit8_whole;
+wire reg_word13__above4_bus_zero;
+wire reg_word13__above4_set_zero;
+wire reg_word14_zero_above;
 reg [7:0] reg_word14_honoured;
 reg reg_word14_out_of_range;
 reg [7:0] reg_word14_shown;
 reg reg_word14_clamped;
 wire reg_word14_mine;
 wire reg_word14_mine_write;
+wire reg_word14_set_selected;
 wire [31:0] reg_word14_shown_wide;
-reg [31:0] reg_word14_written;
+reg [7:0] reg_word14_written;
 reg [31:0] reg_word14_chain_out_data;
 wire reg_word14_chain_out_clamped;
+wire [8:0] reg_word14__limit9_whole;
+wire reg_word14__above5_bus_zero;
+wire reg_word14__above5_set_zero;
+wire reg_word15_zero_above;
 reg [7:0] reg_word15_honoured;
 reg reg_word15_out_of_range;
 reg [7:0] reg_word15_shown;
 reg reg_word15_clamped;
 wire reg_word15_mine;
 wire reg_word15_mine_write;
+wire reg_word15_set_selected;
 wire [31:0] reg_word15_shown_wide;
-reg [31:0] reg_word15_written;
+reg [7:0] reg_word15_written;
 reg [31:0] reg_word15_chain_out_data;
 wire reg_word15_chain_out_clamped;
+wire [8:0] reg_word15__limit10_whole;
+wire reg_word15__above6_bus_zero;
+wire reg_word15__above6_set_zero;
 wire [5:0] reg_word16_honoured;
 wire reg_word16_out_of_range;
 reg [5:0] reg_word16_shown;
@@ -408,29 +441,42 @@ wire reg_word16_mine;
 wire reg_word16_mine_write;
 wire reg_word16_set_mine;
 wire [31:0] reg_word16_shown_wide;
-reg [5:0] reg_word16_written;
+wire [5:0] reg_word16_written;
 reg [31:0] reg_word16_chain_out_data;
 wire reg_word16_chain_out_clamped;
+wire reg_word17_zero_above;
 reg [15:0] reg_word17_honoured;
 reg reg_word17_out_of_range;
 reg [15:0] reg_word17_shown;
 reg reg_word17_clamped;
 wire reg_word17_mine;
 wire reg_word17_mine_write;
+wire reg_word17_set_selected;
 wire [31:0] reg_word17_shown_wide;
-reg [31:0] reg_word17_written;
+reg [15:0] reg_word17_written;
 reg [31:0] reg_word17_chain_out_data;
 wire reg_word17_chain_out_clamped;
+wire [16:0] reg_word17__limit12_whole;
+wire reg_word17__above7_bus_zero;
+wire reg_word17__above7_set_zero;
+wire reg_word18_zero_above;
 reg [15:0] reg_word18_honoured;
 reg reg_word18_out_of_range;
 reg [15:0] reg_word18_shown;
 reg reg_word18_clamped;
 wire reg_word18_mine;
 wire reg_word18_mine_write;
+wire reg_word18_set_selected;
 wire [31:0] reg_word18_shown_wide;
-reg [31:0] reg_word18_written;
+reg [15:0] reg_word18_written;
 reg [31:0] reg_word18_chain_out_data;
 wire reg_word18_chain_out_clamped;
+wire [16:0] reg_word18__limit13_whole;
+wire reg_word18__above8_bus_zero;
+wire reg_word18__above8_set_zero;
+wire reg_word19_zero_above;
+wire reg_word19_ones_above;
+wire reg_word19_sign;
 reg [23:0] reg_word19_honoured;
 reg reg_word19_out_of_range;
 reg [23:0] reg_word19_shown;
@@ -438,11 +484,17 @@ reg reg_word19_clamped;
 wire reg_word19_mine;
 wire reg_word19_mine_write;
 wire [31:0] reg_word19_shown_wide;
-wire [31:0] reg_word19_written;
+wire [23:0] reg_word19_written;
 reg [31:0] reg_word19_chain_out_data;
 wire reg_word19_chain_out_clamped;
+wire reg_word19__above9_bus_ones;
+wire reg_word19__above9_bus_sign;
+wire reg_word19__above9_bus_zero;
 reg reg_word19__store14_word_strobe;
 reg [23:0] reg_word19__store14_word_value;
+wire reg_word20_zero_above;
+wire reg_word20_ones_above;
+wire reg_word20_sign;
 reg [23:0] reg_word20_honoured;
 reg reg_word20_out_of_range;
 reg [23:0] reg_word20_shown;
@@ -450,9 +502,12 @@ reg reg_word20_clamped;
 wire reg_word20_mine;
 wire reg_word20_mine_write;
 wire [31:0] reg_word20_shown_wide;
-wire [31:0] reg_word20_written;
+wire [23:0] reg_word20_written;
 reg [31:0] reg_word20_chain_out_data;
 wire reg_word20_chain_out_clamped;
+wire reg_word20__above10_bus_ones;
+wire reg_word20__above10_bus_sign;
+wire reg_word20__above10_bus_zero;
 reg reg_word20__store15_word_strobe;
 reg [23:0] reg_word20__store15_word_value;
 wire [31:0] reg_word21_shown;
@@ -477,7 +532,7 @@ wire reg_word24_mine;
 wire reg_word24_mine_write;
 wire reg_word24_set_mine;
 wire [31:0] reg_word24_shown_wide;
-reg [1:0] reg_word24_written;
+wire [1:0] reg_word24_written;
 reg [31:0] reg_word24_chain_out_data;
 wire reg_word24_chain_out_clamped;
 reg [19:0] reg_word25_shown;
@@ -498,9 +553,10 @@ wire reg_word27_mine;
 wire reg_word27_mine_write;
 wire reg_word27_set_mine;
 wire [31:0] reg_word27_shown_wide;
-reg [6:0] reg_word27_written;
+wire [6:0] reg_word27_written;
 reg [31:0] reg_word27_chain_out_data;
 wire reg_word27_chain_out_clamped;
+wire reg_word28_zero_above;
 reg [3:0] reg_word28_honoured;
 reg reg_word28_out_of_range;
 reg [3:0] reg_word28_shown;
@@ -509,9 +565,12 @@ wire reg_word28_mine;
 wire reg_word28_mine_write;
 wire reg_word28_set_mine;
 wire [31:0] reg_word28_shown_wide;
-reg [31:0] reg_word28_written;
+wire [3:0] reg_word28_written;
 reg [31:0] reg_word28_chain_out_data;
 wire reg_word28_chain_out_clamped;
+wire [4:0] reg_word28__limit18_whole;
+wire reg_word28__above11_bus_zero;
+wire reg_word29_zero_above;
 reg [15:0] reg_word29_honoured;
 reg reg_word29_out_of_range;
 reg [15:0] reg_word29_shown;
@@ -520,18 +579,23 @@ wire reg_word29_mine;
 wire reg_word29_mine_write;
 wire reg_word29_set_mine;
 wire [31:0] reg_word29_shown_wide;
-reg [31:0] reg_word29_written;
+wire [15:0] reg_word29_written;
 reg [31:0] reg_word29_chain_out_data;
 wire reg_word29_chain_out_clamped;
+wire [16:0] reg_word29__limit19_whole;
+wire reg_word29__above12_bus_zero;
+wire reg_word30_zero_above;
 reg [23:0] reg_word30_honoured;
 reg reg_word30_out_of_range;
 reg reg_word30_clamped;
 wire reg_word30_mine;
 wire reg_word30_mine_write;
 wire [31:0] reg_word30_shown_wide;
-wire [31:0] reg_word30_written;
+wire [23:0] reg_word30_written;
 reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
+wire [24:0] reg_word30__limit20_whole;
+wire reg_word30__above13_bus_zero;
 reg reg_word30__store20_word_strobe;
 reg [23:0] reg_word30__store20_word_value;
 wire [6:0] reg_word31_honoured;
@@ -551,6 +615,7 @@ wire reg_word32_mine;
 wire [31:0] reg_word32_shown_wide;
 reg [31:0] reg_word32_chain_out_data;
 wire reg_word32_chain_out_clamped;
+wire reg_word33_zero_above;
 reg [15:0] reg_word33_honoured;
 reg reg_word33_out_of_range;
 reg [15:0] reg_word33_shown;
@@ -559,9 +624,12 @@ wire reg_word33_mine;
 wire reg_word33_mine_write;
 wire reg_word33_set_mine;
 wire [31:0] reg_word33_shown_wide;
-reg [31:0] reg_word33_written;
+wire [15:0] reg_word33_written;
 reg [31:0] reg_word33_chain_out_data;
 wire reg_word33_chain_out_clamped;
+wire [16:0] reg_word33__limit22_whole;
+wire reg_word33__above14_bus_zero;
+wire reg_word34_zero_above;
 reg [15:0] reg_word34_honoured;
 reg reg_word34_out_of_range;
 reg [15:0] reg_word34_shown;
@@ -570,9 +638,12 @@ wire reg_word34_mine;
 wire reg_word34_mine_write;
 wire reg_word34_set_mine;
 wire [31:0] reg_word34_shown_wide;
-reg [31:0] reg_word34_written;
+wire [15:0] reg_word34_written;
 reg [31:0] reg_word34_chain_out_data;
 wire reg_word34_chain_out_clamped;
+wire [16:0] reg_word34__limit23_whole;
+wire reg_word34__above15_bus_zero;
+wire reg_word35_zero_above;
 reg [15:0] reg_word35_honoured;
 reg reg_word35_out_of_range;
 reg [15:0] reg_word35_shown;
@@ -581,9 +652,12 @@ wire reg_word35_mine;
 wire reg_word35_mine_write;
 wire reg_word35_set_mine;
 wire [31:0] reg_word35_shown_wide;
-reg [31:0] reg_word35_written;
+wire [15:0] reg_word35_written;
 reg [31:0] reg_word35_chain_out_data;
 wire reg_word35_chain_out_clamped;
+wire [16:0] reg_word35__limit24_whole;
+wire reg_word35__above16_bus_zero;
+wire reg_word36_zero_above;
 reg [22:0] reg_word36_honoured;
 reg reg_word36_out_of_range;
 reg [22:0] reg_word36_shown;
@@ -592,19 +666,27 @@ wire reg_word36_mine;
 wire reg_word36_mine_write;
 wire reg_word36_set_mine;
 wire [31:0] reg_word36_shown_wide;
-reg [31:0] reg_word36_written;
+wire [22:0] reg_word36_written;
 reg [31:0] reg_word36_chain_out_data;
 wire reg_word36_chain_out_clamped;
+wire [23:0] reg_word36__limit25_whole;
+wire reg_word36__above17_bus_zero;
+wire reg_word37_zero_above;
 reg [7:0] reg_word37_honoured;
 reg reg_word37_out_of_range;
 reg [7:0] reg_word37_shown;
 reg reg_word37_clamped;
 wire reg_word37_mine;
 wire reg_word37_mine_write;
+wire reg_word37_set_selected;
 wire [31:0] reg_word37_shown_wide;
-reg [31:0] reg_word37_written;
+reg [7:0] reg_word37_written;
 reg [31:0] reg_word37_chain_out_data;
 wire reg_word37_chain_out_clamped;
+wire [8:0] reg_word37__limit26_whole;
+wire reg_word37__above18_bus_zero;
+wire reg_word37__above18_set_zero;
+wire reg_word38_zero_above;
 reg [1:0] reg_word38_honoured;
 reg reg_word38_out_of_range;
 reg reg_word38_clamped;
@@ -612,9 +694,11 @@ wire reg_word38_mine;
 wire reg_word38_mine_write;
 wire reg_word38_set_mine;
 wire [31:0] reg_word38_shown_wide;
-reg [31:0] reg_word38_written;
+wire [1:0] reg_word38_written;
 reg [31:0] reg_word38_chain_out_data;
 wire reg_word38_chain_out_clamped;
+wire [2:0] reg_word38__limit27_whole;
+wire reg_word38__above19_bus_zero;
 reg [6:0] reg_word39_shown;
 wire reg_word39_mine;
 wire [31:0] reg_word39_shown_wide;
@@ -1040,18 +1124,12 @@ assign reg_word1_shown_wide = {30'h0, control};
 assign reg_word1_mine_write = (written_addr == 4);
 
 
-always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word1_merge_bytes
-    if ((reg_word1_set_mine && (set_index == 0))) begin
-        reg_word1_written = set_value[2-1:0];
-    end
-    else begin
-        reg_word1_written = ((reg_word1_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
-    end
-end
+
+assign reg_word1_written = ((control & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
 
 
 
-assign reg_word1_honoured = reg_word1_written[2-1:0];
+assign reg_word1_honoured = reg_word1_written;
 
 
 
@@ -1100,7 +1178,7 @@ assign reg_word2_written = (written_data[4-1:0] & written_mask[4-1:0]);
 
 
 
-assign reg_word2_honoured = reg_word2_written[4-1:0];
+assign reg_word2_honoured = reg_word2_written;
 
 
 
@@ -1169,18 +1247,12 @@ assign reg_word4_shown_wide = {22'h0, reg_word4_shown};
 assign reg_word4_mine_write = (written_addr == 16);
 
 
-always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word4_merge_bytes
-    if ((reg_word4_set_mine && (set_index == 0))) begin
-        reg_word4_written = set_value[10-1:0];
-    end
-    else begin
-        reg_word4_written = ((reg_word4_shown_wide[10-1:0] & (~written_mask[10-1:0])) | (written_data[10-1:0] & written_mask[10-1:0]));
-    end
-end
+
+assign reg_word4_written = ((reg_word4_shown & (~written_mask[10-1:0])) | (written_data[10-1:0] & written_mask[10-1:0]));
 
 
 
-assign reg_word4_honoured = reg_word4_written[10-1:0];
+assign reg_word4_honoured = reg_word4_written;
 
 
 
@@ -1229,7 +1301,7 @@ assign reg_word5_written = (written_data[10-1:0] & written_mask[10-1:0]);
 
 
 
-assign reg_word5_honoured = reg_word5_written[10-1:0];
+assign reg_word5_honoured = reg_word5_written;
 
 
 
@@ -1273,26 +1345,32 @@ assign reg_word6_shown_wide = {16'h0, reg_word6_shown};
 assign reg_word6_mine_write = (written_addr == 24);
 
 
-always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word6_merge_bytes
-    if ((reg_word6_set_mine && (set_index == 0))) begin
-        reg_word6_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word6_written = ((reg_word6_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word6_written = ((reg_word6_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word6_written) begin: reg_word6__limit4_clamp_above_power_of_two
+
+assign reg_word6__limit4_whole = {(!reg_word6_zero_above), reg_word6_written};
+
+
+always @(reg_word6__limit4_whole, reg_word6_written) begin: reg_word6__limit4_clamp_above_power_of_two
     reg_word6_out_of_range = 1'b1;
-    if ((reg_word6_written[32-1:16] != 0)) begin
+    if ((reg_word6__limit4_whole[17-1:16] != 0)) begin
         reg_word6_honoured = 65535;
     end
     else begin
-        reg_word6_honoured = reg_word6_written[16-1:0];
+        reg_word6_honoured = reg_word6_written;
         reg_word6_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word6__above0_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word6_zero_above = reg_word6__above0_bus_zero;
 
 
 
@@ -1402,29 +1480,49 @@ assign reg_word10_shown_wide = {16'h0, reg_word10_shown};
 assign reg_word10_mine_write = (written_addr == 40);
 
 
-always @(reg_word10_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word10_merge_bytes
-    if ((set_strobe && (set_index == 0))) begin
-        reg_word10_written = set_value[32-1:0];
+always @(reg_word10_set_selected, written_mask, written_data, reg_word10_shown, set_value) begin: reg_word10_merge_set_or_bytes
+    if (reg_word10_set_selected) begin
+        reg_word10_written = set_value[16-1:0];
     end
     else begin
-        reg_word10_written = ((reg_word10_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word10_written = ((reg_word10_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
 
-always @(reg_word10_written) begin: reg_word10__limit5_clamp_unsigned
+
+assign reg_word10_set_selected = (set_strobe && (set_index == 0));
+
+
+
+assign reg_word10__limit5_whole = {(!reg_word10_zero_above), reg_word10_written};
+
+
+always @(reg_word10__limit5_whole, reg_word10_written) begin: reg_word10__limit5_clamp_unsigned
     reg_word10_out_of_range = 1'b1;
-    if (((reg_word10_written[32-1:1] == 0) && (reg_word10_written[1-1:0] < 1))) begin
+    if (((reg_word10__limit5_whole[17-1:1] == 0) && (reg_word10__limit5_whole[1-1:0] < 1))) begin
         reg_word10_honoured = 1;
     end
-    else if (((reg_word10_written[32-1:16] != 0) || (reg_word10_written[16-1:0] > 32768))) begin
+    else if (((reg_word10__limit5_whole[17-1:16] != 0) || (reg_word10__limit5_whole[16-1:0] > 32768))) begin
         reg_word10_honoured = 32768;
     end
     else begin
-        reg_word10_honoured = reg_word10_written[16-1:0];
+        reg_word10_honoured = reg_word10_written;
         reg_word10_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word10__above1_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word10__above1_set_zero = (set_value[32-1:16] == 0);
+
+
+
+assign reg_word10_zero_above = reg_word10_set_selected ? reg_word10__above1_set_zero : reg_word10__above1_bus_zero;
 
 
 
@@ -1468,29 +1566,49 @@ assign reg_word11_shown_wide = {16'h0, reg_word11_shown};
 assign reg_word11_mine_write = (written_addr == 44);
 
 
-always @(reg_word11_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word11_merge_bytes
-    if ((set_strobe && (set_index == 1))) begin
-        reg_word11_written = set_value[32-1:0];
+always @(reg_word11_set_selected, written_mask, written_data, reg_word11_shown, set_value) begin: reg_word11_merge_set_or_bytes
+    if (reg_word11_set_selected) begin
+        reg_word11_written = set_value[16-1:0];
     end
     else begin
-        reg_word11_written = ((reg_word11_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word11_written = ((reg_word11_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
 
-always @(reg_word11_written) begin: reg_word11__limit6_clamp_unsigned
+
+assign reg_word11_set_selected = (set_strobe && (set_index == 1));
+
+
+
+assign reg_word11__limit6_whole = {(!reg_word11_zero_above), reg_word11_written};
+
+
+always @(reg_word11__limit6_whole, reg_word11_written) begin: reg_word11__limit6_clamp_unsigned
     reg_word11_out_of_range = 1'b1;
-    if (((reg_word11_written[32-1:1] == 0) && (reg_word11_written[1-1:0] < 1))) begin
+    if (((reg_word11__limit6_whole[17-1:1] == 0) && (reg_word11__limit6_whole[1-1:0] < 1))) begin
         reg_word11_honoured = 1;
     end
-    else if (((reg_word11_written[32-1:16] != 0) || (reg_word11_written[16-1:0] > 32768))) begin
+    else if (((reg_word11__limit6_whole[17-1:16] != 0) || (reg_word11__limit6_whole[16-1:0] > 32768))) begin
         reg_word11_honoured = 32768;
     end
     else begin
-        reg_word11_honoured = reg_word11_written[16-1:0];
+        reg_word11_honoured = reg_word11_written;
         reg_word11_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word11__above2_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word11__above2_set_zero = (set_value[32-1:16] == 0);
+
+
+
+assign reg_word11_zero_above = reg_word11_set_selected ? reg_word11__above2_set_zero : reg_word11__above2_bus_zero;
 
 
 
@@ -1534,26 +1652,46 @@ assign reg_word12_shown_wide = {16'h0, ramp_step};
 assign reg_word12_mine_write = (written_addr == 48);
 
 
-always @(reg_word12_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word12_merge_bytes
-    if ((set_strobe && (set_index == 2))) begin
-        reg_word12_written = set_value[32-1:0];
+always @(reg_word12_set_selected, written_mask, written_data, ramp_step, set_value) begin: reg_word12_merge_set_or_bytes
+    if (reg_word12_set_selected) begin
+        reg_word12_written = set_value[16-1:0];
     end
     else begin
-        reg_word12_written = ((reg_word12_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word12_written = ((ramp_step & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
 
-always @(reg_word12_written) begin: reg_word12__limit7_clamp_above_power_of_two
+
+assign reg_word12_set_selected = (set_strobe && (set_index == 2));
+
+
+
+assign reg_word12__limit7_whole = {(!reg_word12_zero_above), reg_word12_written};
+
+
+always @(reg_word12__limit7_whole, reg_word12_written) begin: reg_word12__limit7_clamp_above_power_of_two
     reg_word12_out_of_range = 1'b1;
-    if ((reg_word12_written[32-1:16] != 0)) begin
+    if ((reg_word12__limit7_whole[17-1:16] != 0)) begin
         reg_word12_honoured = 65535;
     end
     else begin
-        reg_word12_honoured = reg_word12_written[16-1:0];
+        reg_word12_honoured = reg_word12_written;
         reg_word12_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word12__above3_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word12__above3_set_zero = (set_value[32-1:16] == 0);
+
+
+
+assign reg_word12_zero_above = reg_word12_set_selected ? reg_word12__above3_set_zero : reg_word12__above3_bus_zero;
 
 
 
@@ -1597,29 +1735,49 @@ assign reg_word13_shown_wide = {24'h0, reg_word13_shown};
 assign reg_word13_mine_write = (written_addr == 52);
 
 
-always @(reg_word13_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word13_merge_bytes
-    if ((set_strobe && (set_index == 3))) begin
-        reg_word13_written = set_value[32-1:0];
+always @(reg_word13_set_selected, written_mask, written_data, reg_word13_shown, set_value) begin: reg_word13_merge_set_or_bytes
+    if (reg_word13_set_selected) begin
+        reg_word13_written = set_value[8-1:0];
     end
     else begin
-        reg_word13_written = ((reg_word13_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word13_written = ((reg_word13_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
     end
 end
 
 
-always @(reg_word13_written) begin: reg_word13__limit8_clamp_unsigned_power_of_two
+
+assign reg_word13_set_selected = (set_strobe && (set_index == 3));
+
+
+
+assign reg_word13__limit8_whole = {(!reg_word13_zero_above), reg_word13_written};
+
+
+always @(reg_word13__limit8_whole, reg_word13_written) begin: reg_word13__limit8_clamp_unsigned_power_of_two
     reg_word13_out_of_range = 1'b1;
-    if (((reg_word13_written[32-1:1] == 0) && (reg_word13_written[1-1:0] < 1))) begin
+    if (((reg_word13__limit8_whole[9-1:1] == 0) && (reg_word13__limit8_whole[1-1:0] < 1))) begin
         reg_word13_honoured = 1;
     end
-    else if ((reg_word13_written[32-1:8] != 0)) begin
+    else if ((reg_word13__limit8_whole[9-1:8] != 0)) begin
         reg_word13_honoured = 255;
     end
     else begin
-        reg_word13_honoured = reg_word13_written[8-1:0];
+        reg_word13_honoured = reg_word13_written;
         reg_word13_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word13__above4_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word13__above4_set_zero = (set_value[32-1:8] == 0);
+
+
+
+assign reg_word13_zero_above = reg_word13_set_selected ? reg_word13__above4_set_zero : reg_word13__above4_bus_zero;
 
 
 
@@ -1663,29 +1821,49 @@ assign reg_word14_shown_wide = {24'h0, reg_word14_shown};
 assign reg_word14_mine_write = (written_addr == 56);
 
 
-always @(reg_word14_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word14_merge_bytes
-    if ((set_strobe && (set_index == 4))) begin
-        reg_word14_written = set_value[32-1:0];
+always @(reg_word14_set_selected, written_mask, written_data, reg_word14_shown, set_value) begin: reg_word14_merge_set_or_bytes
+    if (reg_word14_set_selected) begin
+        reg_word14_written = set_value[8-1:0];
     end
     else begin
-        reg_word14_written = ((reg_word14_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word14_written = ((reg_word14_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
     end
 end
 
 
-always @(reg_word14_written) begin: reg_word14__limit9_clamp_unsigned_power_of_two
+
+assign reg_word14_set_selected = (set_strobe && (set_index == 4));
+
+
+
+assign reg_word14__limit9_whole = {(!reg_word14_zero_above), reg_word14_written};
+
+
+always @(reg_word14__limit9_whole, reg_word14_written) begin: reg_word14__limit9_clamp_unsigned_power_of_two
     reg_word14_out_of_range = 1'b1;
-    if (((reg_word14_written[32-1:1] == 0) && (reg_word14_written[1-1:0] < 1))) begin
+    if (((reg_word14__limit9_whole[9-1:1] == 0) && (reg_word14__limit9_whole[1-1:0] < 1))) begin
         reg_word14_honoured = 1;
     end
-    else if ((reg_word14_written[32-1:8] != 0)) begin
+    else if ((reg_word14__limit9_whole[9-1:8] != 0)) begin
         reg_word14_honoured = 255;
     end
     else begin
-        reg_word14_honoured = reg_word14_written[8-1:0];
+        reg_word14_honoured = reg_word14_written;
         reg_word14_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word14__above5_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word14__above5_set_zero = (set_value[32-1:8] == 0);
+
+
+
+assign reg_word14_zero_above = reg_word14_set_selected ? reg_word14__above5_set_zero : reg_word14__above5_bus_zero;
 
 
 
@@ -1729,29 +1907,49 @@ assign reg_word15_shown_wide = {24'h0, reg_word15_shown};
 assign reg_word15_mine_write = (written_addr == 60);
 
 
-always @(reg_word15_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word15_merge_bytes
-    if ((set_strobe && (set_index == 5))) begin
-        reg_word15_written = set_value[32-1:0];
+always @(reg_word15_set_selected, written_mask, written_data, reg_word15_shown, set_value) begin: reg_word15_merge_set_or_bytes
+    if (reg_word15_set_selected) begin
+        reg_word15_written = set_value[8-1:0];
     end
     else begin
-        reg_word15_written = ((reg_word15_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word15_written = ((reg_word15_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
     end
 end
 
 
-always @(reg_word15_written) begin: reg_word15__limit10_clamp_unsigned_power_of_two
+
+assign reg_word15_set_selected = (set_strobe && (set_index == 5));
+
+
+
+assign reg_word15__limit10_whole = {(!reg_word15_zero_above), reg_word15_written};
+
+
+always @(reg_word15__limit10_whole, reg_word15_written) begin: reg_word15__limit10_clamp_unsigned_power_of_two
     reg_word15_out_of_range = 1'b1;
-    if (((reg_word15_written[32-1:1] == 0) && (reg_word15_written[1-1:0] < 1))) begin
+    if (((reg_word15__limit10_whole[9-1:1] == 0) && (reg_word15__limit10_whole[1-1:0] < 1))) begin
         reg_word15_honoured = 1;
     end
-    else if ((reg_word15_written[32-1:8] != 0)) begin
+    else if ((reg_word15__limit10_whole[9-1:8] != 0)) begin
         reg_word15_honoured = 255;
     end
     else begin
-        reg_word15_honoured = reg_word15_written[8-1:0];
+        reg_word15_honoured = reg_word15_written;
         reg_word15_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word15__above6_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word15__above6_set_zero = (set_value[32-1:8] == 0);
+
+
+
+assign reg_word15_zero_above = reg_word15_set_selected ? reg_word15__above6_set_zero : reg_word15__above6_bus_zero;
 
 
 
@@ -1795,18 +1993,12 @@ assign reg_word16_shown_wide = {26'h0, reg_word16_shown};
 assign reg_word16_mine_write = (written_addr == 64);
 
 
-always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word16_merge_bytes
-    if ((reg_word16_set_mine && (set_index == 0))) begin
-        reg_word16_written = set_value[6-1:0];
-    end
-    else begin
-        reg_word16_written = ((reg_word16_shown_wide[6-1:0] & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
-    end
-end
+
+assign reg_word16_written = ((reg_word16_shown & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
 
 
 
-assign reg_word16_honoured = reg_word16_written[6-1:0];
+assign reg_word16_honoured = reg_word16_written;
 
 
 
@@ -1850,29 +2042,49 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 assign reg_word17_mine_write = ((written_addr == 68) || (written_addr == 260));
 
 
-always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word17_merge_bytes
-    if ((set_strobe && (set_index == 6))) begin
-        reg_word17_written = set_value[32-1:0];
+always @(reg_word17_set_selected, written_mask, written_data, reg_word17_shown, set_value) begin: reg_word17_merge_set_or_bytes
+    if (reg_word17_set_selected) begin
+        reg_word17_written = set_value[16-1:0];
     end
     else begin
-        reg_word17_written = ((reg_word17_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word17_written = ((reg_word17_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
 
-always @(reg_word17_written) begin: reg_word17__limit12_clamp_unsigned_power_of_two
+
+assign reg_word17_set_selected = (set_strobe && (set_index == 6));
+
+
+
+assign reg_word17__limit12_whole = {(!reg_word17_zero_above), reg_word17_written};
+
+
+always @(reg_word17__limit12_whole, reg_word17_written) begin: reg_word17__limit12_clamp_unsigned_power_of_two
     reg_word17_out_of_range = 1'b1;
-    if (((reg_word17_written[32-1:1] == 0) && (reg_word17_written[1-1:0] < 1))) begin
+    if (((reg_word17__limit12_whole[17-1:1] == 0) && (reg_word17__limit12_whole[1-1:0] < 1))) begin
         reg_word17_honoured = 1;
     end
-    else if ((reg_word17_written[32-1:16] != 0)) begin
+    else if ((reg_word17__limit12_whole[17-1:16] != 0)) begin
         reg_word17_honoured = 65535;
     end
     else begin
-        reg_word17_honoured = reg_word17_written[16-1:0];
+        reg_word17_honoured = reg_word17_written;
         reg_word17_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word17__above7_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word17__above7_set_zero = (set_value[32-1:16] == 0);
+
+
+
+assign reg_word17_zero_above = reg_word17_set_selected ? reg_word17__above7_set_zero : reg_word17__above7_bus_zero;
 
 
 
@@ -1916,29 +2128,49 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 assign reg_word18_mine_write = ((written_addr == 72) || (written_addr == 324));
 
 
-always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word18_merge_bytes
-    if ((set_strobe && (set_index == 7))) begin
-        reg_word18_written = set_value[32-1:0];
+always @(reg_word18_set_selected, written_mask, written_data, reg_word18_shown, set_value) begin: reg_word18_merge_set_or_bytes
+    if (reg_word18_set_selected) begin
+        reg_word18_written = set_value[16-1:0];
     end
     else begin
-        reg_word18_written = ((reg_word18_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word18_written = ((reg_word18_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
     end
 end
 
 
-always @(reg_word18_written) begin: reg_word18__limit13_clamp_unsigned_power_of_two
+
+assign reg_word18_set_selected = (set_strobe && (set_index == 7));
+
+
+
+assign reg_word18__limit13_whole = {(!reg_word18_zero_above), reg_word18_written};
+
+
+always @(reg_word18__limit13_whole, reg_word18_written) begin: reg_word18__limit13_clamp_unsigned_power_of_two
     reg_word18_out_of_range = 1'b1;
-    if (((reg_word18_written[32-1:1] == 0) && (reg_word18_written[1-1:0] < 1))) begin
+    if (((reg_word18__limit13_whole[17-1:1] == 0) && (reg_word18__limit13_whole[1-1:0] < 1))) begin
         reg_word18_honoured = 1;
     end
-    else if ((reg_word18_written[32-1:16] != 0)) begin
+    else if ((reg_word18__limit13_whole[17-1:16] != 0)) begin
         reg_word18_honoured = 65535;
     end
     else begin
-        reg_word18_honoured = reg_word18_written[16-1:0];
+        reg_word18_honoured = reg_word18_written;
         reg_word18_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word18__above8_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word18__above8_set_zero = (set_value[32-1:16] == 0);
+
+
+
+assign reg_word18_zero_above = reg_word18_set_selected ? reg_word18__above8_set_zero : reg_word18__above8_bus_zero;
 
 
 
@@ -1983,15 +2215,15 @@ assign reg_word19_mine_write = ((written_addr == 76) || (written_addr == 264));
 
 
 
-assign reg_word19_written = (written_data[32-1:0] & written_mask[32-1:0]);
+assign reg_word19_written = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
-always @(reg_word19_written) begin: reg_word19__limit14_clamp_signed
-    if (((reg_word19_written[32-1:(24 - 1)] == 0) || (reg_word19_written[32-1:(24 - 1)] == 511))) begin
-        reg_word19_honoured = reg_word19_written[24-1:0];
+always @(reg_word19_zero_above, reg_word19_sign, reg_word19_ones_above, reg_word19_written) begin: reg_word19__limit14_clamp_signed
+    if (((reg_word19_zero_above && (!reg_word19_written[(24 - 1)])) || (reg_word19_ones_above && reg_word19_written[(24 - 1)]))) begin
+        reg_word19_honoured = reg_word19_written;
         reg_word19_out_of_range = 1'b0;
     end
-    else if (reg_word19_written[31]) begin
+    else if (reg_word19_sign) begin
         reg_word19_honoured = 8388608;
         reg_word19_out_of_range = 1'b1;
     end
@@ -2000,6 +2232,18 @@ always @(reg_word19_written) begin: reg_word19__limit14_clamp_signed
         reg_word19_out_of_range = 1'b1;
     end
 end
+
+
+
+assign reg_word19__above9_bus_zero = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
+assign reg_word19__above9_bus_ones = ((written_data[32-1:24] & written_mask[32-1:24]) == 255);
+assign reg_word19__above9_bus_sign = (written_data[31] && written_mask[31]);
+
+
+
+assign reg_word19_zero_above = reg_word19__above9_bus_zero;
+assign reg_word19_ones_above = reg_word19__above9_bus_ones;
+assign reg_word19_sign = reg_word19__above9_bus_sign;
 
 
 
@@ -2047,15 +2291,15 @@ assign reg_word20_mine_write = ((written_addr == 80) || (written_addr == 328));
 
 
 
-assign reg_word20_written = (written_data[32-1:0] & written_mask[32-1:0]);
+assign reg_word20_written = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
-always @(reg_word20_written) begin: reg_word20__limit15_clamp_signed
-    if (((reg_word20_written[32-1:(24 - 1)] == 0) || (reg_word20_written[32-1:(24 - 1)] == 511))) begin
-        reg_word20_honoured = reg_word20_written[24-1:0];
+always @(reg_word20_zero_above, reg_word20_sign, reg_word20_ones_above, reg_word20_written) begin: reg_word20__limit15_clamp_signed
+    if (((reg_word20_zero_above && (!reg_word20_written[(24 - 1)])) || (reg_word20_ones_above && reg_word20_written[(24 - 1)]))) begin
+        reg_word20_honoured = reg_word20_written;
         reg_word20_out_of_range = 1'b0;
     end
-    else if (reg_word20_written[31]) begin
+    else if (reg_word20_sign) begin
         reg_word20_honoured = 8388608;
         reg_word20_out_of_range = 1'b1;
     end
@@ -2064,6 +2308,18 @@ always @(reg_word20_written) begin: reg_word20__limit15_clamp_signed
         reg_word20_out_of_range = 1'b1;
     end
 end
+
+
+
+assign reg_word20__above10_bus_zero = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
+assign reg_word20__above10_bus_ones = ((written_data[32-1:24] & written_mask[32-1:24]) == 255);
+assign reg_word20__above10_bus_sign = (written_data[31] && written_mask[31]);
+
+
+
+assign reg_word20_zero_above = reg_word20__above10_bus_zero;
+assign reg_word20_ones_above = reg_word20__above10_bus_ones;
+assign reg_word20_sign = reg_word20__above10_bus_sign;
 
 
 
@@ -2176,18 +2432,12 @@ assign reg_word24_shown_wide = {30'h0, machine_control};
 assign reg_word24_mine_write = (written_addr == 96);
 
 
-always @(reg_word24_shown_wide, reg_word24_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word24_merge_bytes
-    if ((reg_word24_set_mine && (set_index == 0))) begin
-        reg_word24_written = set_value[2-1:0];
-    end
-    else begin
-        reg_word24_written = ((reg_word24_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
-    end
-end
+
+assign reg_word24_written = ((machine_control & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
 
 
 
-assign reg_word24_honoured = reg_word24_written[2-1:0];
+assign reg_word24_honoured = reg_word24_written;
 
 
 
@@ -2278,18 +2528,12 @@ assign reg_word27_shown_wide = {25'h0, reg_word27_shown};
 assign reg_word27_mine_write = (written_addr == 108);
 
 
-always @(reg_word27_shown_wide, reg_word27_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word27_merge_bytes
-    if ((reg_word27_set_mine && (set_index == 0))) begin
-        reg_word27_written = set_value[7-1:0];
-    end
-    else begin
-        reg_word27_written = ((reg_word27_shown_wide[7-1:0] & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
-    end
-end
+
+assign reg_word27_written = ((reg_word27_shown & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
 
 
 
-assign reg_word27_honoured = reg_word27_written[7-1:0];
+assign reg_word27_honoured = reg_word27_written;
 
 
 
@@ -2333,29 +2577,35 @@ assign reg_word28_shown_wide = {28'h0, reg_word28_shown};
 assign reg_word28_mine_write = (written_addr == 112);
 
 
-always @(reg_word28_shown_wide, reg_word28_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word28_merge_bytes
-    if ((reg_word28_set_mine && (set_index == 0))) begin
-        reg_word28_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word28_written = ((reg_word28_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word28_written = ((reg_word28_shown & (~written_mask[4-1:0])) | (written_data[4-1:0] & written_mask[4-1:0]));
 
 
-always @(reg_word28_written) begin: reg_word28__limit18_clamp_unsigned_power_of_two
+
+assign reg_word28__limit18_whole = {(!reg_word28_zero_above), reg_word28_written};
+
+
+always @(reg_word28__limit18_whole, reg_word28_written) begin: reg_word28__limit18_clamp_unsigned_power_of_two
     reg_word28_out_of_range = 1'b1;
-    if (((reg_word28_written[32-1:1] == 0) && (reg_word28_written[1-1:0] < 1))) begin
+    if (((reg_word28__limit18_whole[5-1:1] == 0) && (reg_word28__limit18_whole[1-1:0] < 1))) begin
         reg_word28_honoured = 1;
     end
-    else if ((reg_word28_written[32-1:4] != 0)) begin
+    else if ((reg_word28__limit18_whole[5-1:4] != 0)) begin
         reg_word28_honoured = 15;
     end
     else begin
-        reg_word28_honoured = reg_word28_written[4-1:0];
+        reg_word28_honoured = reg_word28_written;
         reg_word28_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word28__above11_bus_zero = ((written_data[32-1:4] & written_mask[32-1:4]) == 0);
+
+
+
+assign reg_word28_zero_above = reg_word28__above11_bus_zero;
 
 
 
@@ -2399,29 +2649,35 @@ assign reg_word29_shown_wide = {16'h0, reg_word29_shown};
 assign reg_word29_mine_write = (written_addr == 116);
 
 
-always @(reg_word29_shown_wide, reg_word29_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word29_merge_bytes
-    if ((reg_word29_set_mine && (set_index == 0))) begin
-        reg_word29_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word29_written = ((reg_word29_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word29_written = ((reg_word29_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word29_written) begin: reg_word29__limit19_clamp_unsigned_power_of_two
+
+assign reg_word29__limit19_whole = {(!reg_word29_zero_above), reg_word29_written};
+
+
+always @(reg_word29__limit19_whole, reg_word29_written) begin: reg_word29__limit19_clamp_unsigned_power_of_two
     reg_word29_out_of_range = 1'b1;
-    if (((reg_word29_written[32-1:1] == 0) && (reg_word29_written[1-1:0] < 1))) begin
+    if (((reg_word29__limit19_whole[17-1:1] == 0) && (reg_word29__limit19_whole[1-1:0] < 1))) begin
         reg_word29_honoured = 1;
     end
-    else if ((reg_word29_written[32-1:16] != 0)) begin
+    else if ((reg_word29__limit19_whole[17-1:16] != 0)) begin
         reg_word29_honoured = 65535;
     end
     else begin
-        reg_word29_honoured = reg_word29_written[16-1:0];
+        reg_word29_honoured = reg_word29_written;
         reg_word29_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word29__above12_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word29_zero_above = reg_word29__above12_bus_zero;
 
 
 
@@ -2466,19 +2722,31 @@ assign reg_word30_mine_write = (written_addr == 120);
 
 
 
-assign reg_word30_written = (written_data[32-1:0] & written_mask[32-1:0]);
+assign reg_word30_written = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
-always @(reg_word30_written) begin: reg_word30__limit20_clamp_above_power_of_two
+
+assign reg_word30__limit20_whole = {(!reg_word30_zero_above), reg_word30_written};
+
+
+always @(reg_word30__limit20_whole, reg_word30_written) begin: reg_word30__limit20_clamp_above_power_of_two
     reg_word30_out_of_range = 1'b1;
-    if ((reg_word30_written[32-1:24] != 0)) begin
+    if ((reg_word30__limit20_whole[25-1:24] != 0)) begin
         reg_word30_honoured = 16777215;
     end
     else begin
-        reg_word30_honoured = reg_word30_written[24-1:0];
+        reg_word30_honoured = reg_word30_written;
         reg_word30_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word30__above13_bus_zero = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
+
+
+
+assign reg_word30_zero_above = reg_word30__above13_bus_zero;
 
 
 
@@ -2530,7 +2798,7 @@ assign reg_word31_written = (written_data[7-1:0] & written_mask[7-1:0]);
 
 
 
-assign reg_word31_honoured = reg_word31_written[7-1:0];
+assign reg_word31_honoured = reg_word31_written;
 
 
 
@@ -2599,29 +2867,35 @@ assign reg_word33_shown_wide = {16'h0, reg_word33_shown};
 assign reg_word33_mine_write = (written_addr == 132);
 
 
-always @(reg_word33_shown_wide, reg_word33_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word33_merge_bytes
-    if ((reg_word33_set_mine && (set_index == 0))) begin
-        reg_word33_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word33_written = ((reg_word33_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word33_written = ((reg_word33_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word33_written) begin: reg_word33__limit22_clamp_unsigned_power_of_two
+
+assign reg_word33__limit22_whole = {(!reg_word33_zero_above), reg_word33_written};
+
+
+always @(reg_word33__limit22_whole, reg_word33_written) begin: reg_word33__limit22_clamp_unsigned_power_of_two
     reg_word33_out_of_range = 1'b1;
-    if (((reg_word33_written[32-1:1] == 0) && (reg_word33_written[1-1:0] < 1))) begin
+    if (((reg_word33__limit22_whole[17-1:1] == 0) && (reg_word33__limit22_whole[1-1:0] < 1))) begin
         reg_word33_honoured = 1;
     end
-    else if ((reg_word33_written[32-1:16] != 0)) begin
+    else if ((reg_word33__limit22_whole[17-1:16] != 0)) begin
         reg_word33_honoured = 65535;
     end
     else begin
-        reg_word33_honoured = reg_word33_written[16-1:0];
+        reg_word33_honoured = reg_word33_written;
         reg_word33_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word33__above14_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word33_zero_above = reg_word33__above14_bus_zero;
 
 
 
@@ -2665,29 +2939,35 @@ assign reg_word34_shown_wide = {16'h0, reg_word34_shown};
 assign reg_word34_mine_write = (written_addr == 136);
 
 
-always @(reg_word34_shown_wide, reg_word34_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word34_merge_bytes
-    if ((reg_word34_set_mine && (set_index == 0))) begin
-        reg_word34_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word34_written = ((reg_word34_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word34_written = ((reg_word34_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word34_written) begin: reg_word34__limit23_clamp_unsigned_power_of_two
+
+assign reg_word34__limit23_whole = {(!reg_word34_zero_above), reg_word34_written};
+
+
+always @(reg_word34__limit23_whole, reg_word34_written) begin: reg_word34__limit23_clamp_unsigned_power_of_two
     reg_word34_out_of_range = 1'b1;
-    if (((reg_word34_written[32-1:1] == 0) && (reg_word34_written[1-1:0] < 1))) begin
+    if (((reg_word34__limit23_whole[17-1:1] == 0) && (reg_word34__limit23_whole[1-1:0] < 1))) begin
         reg_word34_honoured = 1;
     end
-    else if ((reg_word34_written[32-1:16] != 0)) begin
+    else if ((reg_word34__limit23_whole[17-1:16] != 0)) begin
         reg_word34_honoured = 65535;
     end
     else begin
-        reg_word34_honoured = reg_word34_written[16-1:0];
+        reg_word34_honoured = reg_word34_written;
         reg_word34_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word34__above15_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word34_zero_above = reg_word34__above15_bus_zero;
 
 
 
@@ -2731,26 +3011,32 @@ assign reg_word35_shown_wide = {16'h0, reg_word35_shown};
 assign reg_word35_mine_write = (written_addr == 140);
 
 
-always @(reg_word35_shown_wide, reg_word35_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word35_merge_bytes
-    if ((reg_word35_set_mine && (set_index == 0))) begin
-        reg_word35_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word35_written = ((reg_word35_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word35_written = ((reg_word35_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word35_written) begin: reg_word35__limit24_clamp_above_power_of_two
+
+assign reg_word35__limit24_whole = {(!reg_word35_zero_above), reg_word35_written};
+
+
+always @(reg_word35__limit24_whole, reg_word35_written) begin: reg_word35__limit24_clamp_above_power_of_two
     reg_word35_out_of_range = 1'b1;
-    if ((reg_word35_written[32-1:16] != 0)) begin
+    if ((reg_word35__limit24_whole[17-1:16] != 0)) begin
         reg_word35_honoured = 65535;
     end
     else begin
-        reg_word35_honoured = reg_word35_written[16-1:0];
+        reg_word35_honoured = reg_word35_written;
         reg_word35_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word35__above16_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word35_zero_above = reg_word35__above16_bus_zero;
 
 
 
@@ -2794,29 +3080,35 @@ assign reg_word36_shown_wide = {9'h0, reg_word36_shown};
 assign reg_word36_mine_write = (written_addr == 144);
 
 
-always @(reg_word36_shown_wide, reg_word36_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word36_merge_bytes
-    if ((reg_word36_set_mine && (set_index == 0))) begin
-        reg_word36_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word36_written = ((reg_word36_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word36_written = ((reg_word36_shown & (~written_mask[23-1:0])) | (written_data[23-1:0] & written_mask[23-1:0]));
 
 
-always @(reg_word36_written) begin: reg_word36__limit25_clamp_unsigned_power_of_two
+
+assign reg_word36__limit25_whole = {(!reg_word36_zero_above), reg_word36_written};
+
+
+always @(reg_word36__limit25_whole, reg_word36_written) begin: reg_word36__limit25_clamp_unsigned_power_of_two
     reg_word36_out_of_range = 1'b1;
-    if (((reg_word36_written[32-1:1] == 0) && (reg_word36_written[1-1:0] < 1))) begin
+    if (((reg_word36__limit25_whole[24-1:1] == 0) && (reg_word36__limit25_whole[1-1:0] < 1))) begin
         reg_word36_honoured = 1;
     end
-    else if ((reg_word36_written[32-1:23] != 0)) begin
+    else if ((reg_word36__limit25_whole[24-1:23] != 0)) begin
         reg_word36_honoured = 8388607;
     end
     else begin
-        reg_word36_honoured = reg_word36_written[23-1:0];
+        reg_word36_honoured = reg_word36_written;
         reg_word36_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word36__above17_bus_zero = ((written_data[32-1:23] & written_mask[32-1:23]) == 0);
+
+
+
+assign reg_word36_zero_above = reg_word36__above17_bus_zero;
 
 
 
@@ -2860,29 +3152,49 @@ assign reg_word37_shown_wide = {24'h0, reg_word37_shown};
 assign reg_word37_mine_write = (written_addr == 148);
 
 
-always @(reg_word37_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word37_merge_bytes
-    if ((set_strobe && (set_index == 8))) begin
-        reg_word37_written = set_value[32-1:0];
+always @(reg_word37_set_selected, written_mask, written_data, reg_word37_shown, set_value) begin: reg_word37_merge_set_or_bytes
+    if (reg_word37_set_selected) begin
+        reg_word37_written = set_value[8-1:0];
     end
     else begin
-        reg_word37_written = ((reg_word37_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word37_written = ((reg_word37_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
     end
 end
 
 
-always @(reg_word37_written) begin: reg_word37__limit26_clamp_unsigned_power_of_two
+
+assign reg_word37_set_selected = (set_strobe && (set_index == 8));
+
+
+
+assign reg_word37__limit26_whole = {(!reg_word37_zero_above), reg_word37_written};
+
+
+always @(reg_word37__limit26_whole, reg_word37_written) begin: reg_word37__limit26_clamp_unsigned_power_of_two
     reg_word37_out_of_range = 1'b1;
-    if (((reg_word37_written[32-1:1] == 0) && (reg_word37_written[1-1:0] < 1))) begin
+    if (((reg_word37__limit26_whole[9-1:1] == 0) && (reg_word37__limit26_whole[1-1:0] < 1))) begin
         reg_word37_honoured = 1;
     end
-    else if ((reg_word37_written[32-1:8] != 0)) begin
+    else if ((reg_word37__limit26_whole[9-1:8] != 0)) begin
         reg_word37_honoured = 255;
     end
     else begin
-        reg_word37_honoured = reg_word37_written[8-1:0];
+        reg_word37_honoured = reg_word37_written;
         reg_word37_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word37__above18_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word37__above18_set_zero = (set_value[32-1:8] == 0);
+
+
+
+assign reg_word37_zero_above = reg_word37_set_selected ? reg_word37__above18_set_zero : reg_word37__above18_bus_zero;
 
 
 
@@ -2926,26 +3238,32 @@ assign reg_word38_shown_wide = {30'h0, step_mode};
 assign reg_word38_mine_write = (written_addr == 152);
 
 
-always @(reg_word38_shown_wide, reg_word38_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word38_merge_bytes
-    if ((reg_word38_set_mine && (set_index == 0))) begin
-        reg_word38_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word38_written = ((reg_word38_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word38_written = ((step_mode & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
 
 
-always @(reg_word38_written) begin: reg_word38__limit27_clamp_above
+
+assign reg_word38__limit27_whole = {(!reg_word38_zero_above), reg_word38_written};
+
+
+always @(reg_word38__limit27_whole, reg_word38_written) begin: reg_word38__limit27_clamp_above
     reg_word38_out_of_range = 1'b1;
-    if (((reg_word38_written[32-1:2] != 0) || (reg_word38_written[2-1:0] > 2))) begin
+    if (((reg_word38__limit27_whole[3-1:2] != 0) || (reg_word38__limit27_whole[2-1:0] > 2))) begin
         reg_word38_honoured = 2;
     end
     else begin
-        reg_word38_honoured = reg_word38_written[2-1:0];
+        reg_word38_honoured = reg_word38_written;
         reg_word38_out_of_range = 1'b0;
     end
 end
+
+
+
+assign reg_word38__above19_bus_zero = ((written_data[32-1:2] & written_mask[32-1:2]) == 0);
+
+
+
+assign reg_word38_zero_above = reg_word38__above19_bus_zero;
 
 
 

@@ -393,7 +393,7 @@ wire card1_card_core1_regs_fifo2_reg_word83_mine;
 wire card1_card_core1_regs_fifo2_reg_word83_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word83_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word83_written;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word83_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
 wire [3:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
@@ -419,7 +419,7 @@ wire card1_card_core1_regs_fifo2_reg_word86_mine;
 wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [9:0] card1_card_core1_regs_fifo2_reg_word86_written;
+wire [9:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
 wire [9:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
@@ -431,6 +431,7 @@ wire [9:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
 reg [9:0] card1_card_core1_regs_fifo2_reg_word87__store59_word_hw;
+wire card1_card_core1_regs_fifo2_reg_word88_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
 reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_shown;
@@ -439,9 +440,11 @@ wire card1_card_core1_regs_fifo2_reg_word88_mine;
 wire card1_card_core1_regs_fifo2_reg_word88_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word88_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word88_written;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word88_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word88__limit60_whole;
+wire card1_card_core1_regs_fifo2_reg_word88__above40_bus_zero;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word89_shown;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
@@ -457,65 +460,95 @@ wire card1_card_core1_regs_fifo2_reg_word91_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word92_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
 reg card1_card_core1_regs_fifo2_reg_word92_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word92_shown;
 reg card1_card_core1_regs_fifo2_reg_word92_clamped;
 wire card1_card_core1_regs_fifo2_reg_word92_mine;
 wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word92_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word92_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word92_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word92__limit61_whole;
+wire card1_card_core1_regs_fifo2_reg_word92__above41_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word92__above41_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word93_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
 reg card1_card_core1_regs_fifo2_reg_word93_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word93_shown;
 reg card1_card_core1_regs_fifo2_reg_word93_clamped;
 wire card1_card_core1_regs_fifo2_reg_word93_mine;
 wire card1_card_core1_regs_fifo2_reg_word93_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word93_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word93__limit62_whole;
+wire card1_card_core1_regs_fifo2_reg_word93__above42_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word93__above42_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word94_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
 reg card1_card_core1_regs_fifo2_reg_word94_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word94_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word94__limit63_whole;
+wire card1_card_core1_regs_fifo2_reg_word94__above43_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word94__above43_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word95_zero_above;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
 reg card1_card_core1_regs_fifo2_reg_word95_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word95_shown;
 reg card1_card_core1_regs_fifo2_reg_word95_clamped;
 wire card1_card_core1_regs_fifo2_reg_word95_mine;
 wire card1_card_core1_regs_fifo2_reg_word95_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word95_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word95_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word95_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word95__limit64_whole;
+wire card1_card_core1_regs_fifo2_reg_word95__above44_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word95__above44_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word96_zero_above;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word96_honoured;
 reg card1_card_core1_regs_fifo2_reg_word96_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word96_shown;
 reg card1_card_core1_regs_fifo2_reg_word96_clamped;
 wire card1_card_core1_regs_fifo2_reg_word96_mine;
 wire card1_card_core1_regs_fifo2_reg_word96_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word96_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word96_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word96_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word96_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word96__limit65_whole;
+wire card1_card_core1_regs_fifo2_reg_word96__above45_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word96__above45_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word97_zero_above;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word97_honoured;
 reg card1_card_core1_regs_fifo2_reg_word97_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word97_shown;
 reg card1_card_core1_regs_fifo2_reg_word97_clamped;
 wire card1_card_core1_regs_fifo2_reg_word97_mine;
 wire card1_card_core1_regs_fifo2_reg_word97_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word97_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word97_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word97_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word97_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word97__limit66_whole;
+wire card1_card_core1_regs_fifo2_reg_word97__above46_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word97__above46_set_zero;
 wire [5:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
 wire card1_card_core1_regs_fifo2_reg_word98_out_of_range;
 reg [5:0] card1_card_core1_regs_fifo2_reg_word98_shown;
@@ -524,29 +557,42 @@ wire card1_card_core1_regs_fifo2_reg_word98_mine;
 wire card1_card_core1_regs_fifo2_reg_word98_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word98_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word98_shown_wide;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word98_written;
+wire [5:0] card1_card_core1_regs_fifo2_reg_word98_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word99_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word99_honoured;
 reg card1_card_core1_regs_fifo2_reg_word99_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word99_shown;
 reg card1_card_core1_regs_fifo2_reg_word99_clamped;
 wire card1_card_core1_regs_fifo2_reg_word99_mine;
 wire card1_card_core1_regs_fifo2_reg_word99_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word99_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word99_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word99_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word99__limit68_whole;
+wire card1_card_core1_regs_fifo2_reg_word99__above47_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word99__above47_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word100_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word100_honoured;
 reg card1_card_core1_regs_fifo2_reg_word100_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word100_shown;
 reg card1_card_core1_regs_fifo2_reg_word100_clamped;
 wire card1_card_core1_regs_fifo2_reg_word100_mine;
 wire card1_card_core1_regs_fifo2_reg_word100_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word100_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word100_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word100_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word100_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word100__limit69_whole;
+wire card1_card_core1_regs_fifo2_reg_word100__above48_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word100__above48_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word101_zero_above;
+wire card1_card_core1_regs_fifo2_reg_word101_ones_above;
+wire card1_card_core1_regs_fifo2_reg_word101_sign;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word101_honoured;
 reg card1_card_core1_regs_fifo2_reg_word101_out_of_range;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word101_shown;
@@ -554,11 +600,17 @@ reg card1_card_core1_regs_fifo2_reg_word101_clamped;
 wire card1_card_core1_regs_fifo2_reg_word101_mine;
 wire card1_card_core1_regs_fifo2_reg_word101_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word101_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word101_written;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word101_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word101__above49_bus_ones;
+wire card1_card_core1_regs_fifo2_reg_word101__above49_bus_sign;
+wire card1_card_core1_regs_fifo2_reg_word101__above49_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word101__store70_word_value;
+wire card1_card_core1_regs_fifo2_reg_word102_zero_above;
+wire card1_card_core1_regs_fifo2_reg_word102_ones_above;
+wire card1_card_core1_regs_fifo2_reg_word102_sign;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
 reg card1_card_core1_regs_fifo2_reg_word102_out_of_range;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word102_shown;
@@ -566,9 +618,12 @@ reg card1_card_core1_regs_fifo2_reg_word102_clamped;
 wire card1_card_core1_regs_fifo2_reg_word102_mine;
 wire card1_card_core1_regs_fifo2_reg_word102_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word102_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word102_written;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word102_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word102__above50_bus_ones;
+wire card1_card_core1_regs_fifo2_reg_word102__above50_bus_sign;
+wire card1_card_core1_regs_fifo2_reg_word102__above50_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word102__store71_word_value;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word103_shown;
@@ -593,7 +648,7 @@ wire card1_card_core1_regs_fifo2_reg_word106_mine;
 wire card1_card_core1_regs_fifo2_reg_word106_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word106_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word106_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word106_written;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word106_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
 reg [19:0] card1_card_core1_regs_fifo2_reg_word107_shown;
@@ -614,9 +669,10 @@ wire card1_card_core1_regs_fifo2_reg_word109_mine;
 wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word109_written;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word109_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word110_zero_above;
 reg [3:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
 reg card1_card_core1_regs_fifo2_reg_word110_out_of_range;
 reg [3:0] card1_card_core1_regs_fifo2_reg_word110_shown;
@@ -625,9 +681,12 @@ wire card1_card_core1_regs_fifo2_reg_word110_mine;
 wire card1_card_core1_regs_fifo2_reg_word110_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word110_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word110_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word110_written;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word110_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word110__limit74_whole;
+wire card1_card_core1_regs_fifo2_reg_word110__above51_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word111_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word111_honoured;
 reg card1_card_core1_regs_fifo2_reg_word111_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word111_shown;
@@ -636,18 +695,23 @@ wire card1_card_core1_regs_fifo2_reg_word111_mine;
 wire card1_card_core1_regs_fifo2_reg_word111_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word111_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word111_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word111_written;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word111_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word111__limit75_whole;
+wire card1_card_core1_regs_fifo2_reg_word111__above52_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word112_zero_above;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word112_honoured;
 reg card1_card_core1_regs_fifo2_reg_word112_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word112_clamped;
 wire card1_card_core1_regs_fifo2_reg_word112_mine;
 wire card1_card_core1_regs_fifo2_reg_word112_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word112_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word112_written;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word112_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
+wire [24:0] card1_card_core1_regs_fifo2_reg_word112__limit76_whole;
+wire card1_card_core1_regs_fifo2_reg_word112__above53_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word112__store76_word_value;
 wire [6:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
@@ -667,6 +731,7 @@ wire card1_card_core1_regs_fifo2_reg_word114_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word114_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word115_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word115_honoured;
 reg card1_card_core1_regs_fifo2_reg_word115_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word115_shown;
@@ -675,9 +740,12 @@ wire card1_card_core1_regs_fifo2_reg_word115_mine;
 wire card1_card_core1_regs_fifo2_reg_word115_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word115_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word115_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word115_written;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word115_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word115__limit78_whole;
+wire card1_card_core1_regs_fifo2_reg_word115__above54_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word116_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
 reg card1_card_core1_regs_fifo2_reg_word116_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word116_shown;
@@ -686,9 +754,12 @@ wire card1_card_core1_regs_fifo2_reg_word116_mine;
 wire card1_card_core1_regs_fifo2_reg_word116_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word116_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word116_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word116_written;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word116_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word116_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word116__limit79_whole;
+wire card1_card_core1_regs_fifo2_reg_word116__above55_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word117_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word117_honoured;
 reg card1_card_core1_regs_fifo2_reg_word117_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word117_shown;
@@ -697,9 +768,12 @@ wire card1_card_core1_regs_fifo2_reg_word117_mine;
 wire card1_card_core1_regs_fifo2_reg_word117_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word117_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word117_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word117_written;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word117_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word117_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word117_chain_out_clamped;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word117__limit80_whole;
+wire card1_card_core1_regs_fifo2_reg_word117__above56_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word118_zero_above;
 reg [22:0] card1_card_core1_regs_fifo2_reg_word118_honoured;
 reg card1_card_core1_regs_fifo2_reg_word118_out_of_range;
 reg [22:0] card1_card_core1_regs_fifo2_reg_word118_shown;
@@ -708,19 +782,27 @@ wire card1_card_core1_regs_fifo2_reg_word118_mine;
 wire card1_card_core1_regs_fifo2_reg_word118_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word118_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word118_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word118_written;
+wire [22:0] card1_card_core1_regs_fifo2_reg_word118_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word118_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word118_chain_out_clamped;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word118__limit81_whole;
+wire card1_card_core1_regs_fifo2_reg_word118__above57_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word119_zero_above;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word119_honoured;
 reg card1_card_core1_regs_fifo2_reg_word119_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word119_shown;
 reg card1_card_core1_regs_fifo2_reg_word119_clamped;
 wire card1_card_core1_regs_fifo2_reg_word119_mine;
 wire card1_card_core1_regs_fifo2_reg_word119_mine_write;
+wire card1_card_core1_regs_fifo2_reg_word119_set_selected;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word119_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word119_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word119_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word119_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word119_chain_out_clamped;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word119__limit82_whole;
+wire card1_card_core1_regs_fifo2_reg_word119__above58_bus_zero;
+wire card1_card_core1_regs_fifo2_reg_word119__above58_set_zero;
+wire card1_card_core1_regs_fifo2_reg_word120_zero_above;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word120_honoured;
 reg card1_card_core1_regs_fifo2_reg_word120_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word120_clamped;
@@ -728,9 +810,11 @@ wire card1_card_core1_regs_fifo2_reg_word120_mine;
 wire card1_card_core1_regs_fifo2_reg_word120_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word120_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word120_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word120_written;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word120_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word120_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word120_chain_out_clamped;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word120__limit83_whole;
+wire card1_card_core1_regs_fifo2_reg_word120__above59_bus_zero;
 reg [6:0] card1_card_core1_regs_fifo2_reg_word121_shown;
 wire card1_card_core1_regs_fifo2_reg_word121_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word121_shown_wide;
@@ -3369,18 +3453,12 @@ assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = {30'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word83_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word83_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word83_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word83_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word83_written = ((card1_card_core1_regs_fifo2_reg_word83_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word83_written = ((card1_card_core1_regs_fifo2_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written;
 
 
 
@@ -3429,7 +3507,7 @@ assign card1_card_core1_regs_fifo2_reg_word84_written = (card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[4-1:0];
+assign card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written;
 
 
 
@@ -3498,18 +3576,12 @@ assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {22'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[10-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[10-1:0] & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[10-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written;
 
 
 
@@ -3558,7 +3630,7 @@ assign card1_card_core1_regs_fifo2_reg_word87_written = (card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[10-1:0];
+assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written;
 
 
 
@@ -3602,26 +3674,32 @@ assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word88_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word88_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word88_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word88_written = ((card1_card_core1_regs_fifo2_reg_word88_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word88_written = ((card1_card_core1_regs_fifo2_reg_word88_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit60_clamp_above_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word88__limit60_whole = {(!card1_card_core1_regs_fifo2_reg_word88_zero_above), card1_card_core1_regs_fifo2_reg_word88_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word88__limit60_whole, card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit60_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word88_written[32-1:16] != 0)) begin
+    if ((card1_card_core1_regs_fifo2_reg_word88__limit60_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word88_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written;
         card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88__above40_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_zero_above = card1_card_core1_regs_fifo2_reg_word88__above40_bus_zero;
 
 
 
@@ -3731,29 +3809,49 @@ assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word92_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word92_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word92_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_written = ((card1_card_core1_regs_fifo2_reg_word92_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word92_written = ((card1_card_core1_regs_fifo2_reg_word92_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit61_clamp_unsigned
+
+assign card1_card_core1_regs_fifo2_reg_word92_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__limit61_whole = {(!card1_card_core1_regs_fifo2_reg_word92_zero_above), card1_card_core1_regs_fifo2_reg_word92_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word92__limit61_whole, card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit61_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word92__limit61_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92__limit61_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 1;
     end
-    else if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word92_written[16-1:0] > 32768))) begin
+    else if (((card1_card_core1_regs_fifo2_reg_word92__limit61_whole[17-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word92__limit61_whole[16-1:0] > 32768))) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written;
         card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__above41_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__above41_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_zero_above = card1_card_core1_regs_fifo2_reg_word92_set_selected ? card1_card_core1_regs_fifo2_reg_word92__above41_set_zero : card1_card_core1_regs_fifo2_reg_word92__above41_bus_zero;
 
 
 
@@ -3797,29 +3895,49 @@ assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word93_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word93_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word93_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word93_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word93_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_written = ((card1_card_core1_regs_fifo2_reg_word93_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word93_written = ((card1_card_core1_regs_fifo2_reg_word93_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit62_clamp_unsigned
+
+assign card1_card_core1_regs_fifo2_reg_word93_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__limit62_whole = {(!card1_card_core1_regs_fifo2_reg_word93_zero_above), card1_card_core1_regs_fifo2_reg_word93_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93__limit62_whole, card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit62_clamp_unsigned
     card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word93__limit62_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93__limit62_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word93_honoured = 1;
     end
-    else if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word93_written[16-1:0] > 32768))) begin
+    else if (((card1_card_core1_regs_fifo2_reg_word93__limit62_whole[17-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word93__limit62_whole[16-1:0] > 32768))) begin
         card1_card_core1_regs_fifo2_reg_word93_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written;
         card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__above42_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__above42_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_zero_above = card1_card_core1_regs_fifo2_reg_word93_set_selected ? card1_card_core1_regs_fifo2_reg_word93__above42_set_zero : card1_card_core1_regs_fifo2_reg_word93__above42_bus_zero;
 
 
 
@@ -3863,26 +3981,46 @@ assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word94_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_ramp_step, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word94_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_ramp_step & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit63_clamp_above_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word94_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__limit63_whole = {(!card1_card_core1_regs_fifo2_reg_word94_zero_above), card1_card_core1_regs_fifo2_reg_word94_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word94__limit63_whole, card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit63_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word94_written[32-1:16] != 0)) begin
+    if ((card1_card_core1_regs_fifo2_reg_word94__limit63_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word94_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written;
         card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__above43_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__above43_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_zero_above = card1_card_core1_regs_fifo2_reg_word94_set_selected ? card1_card_core1_regs_fifo2_reg_word94__above43_set_zero : card1_card_core1_regs_fifo2_reg_word94__above43_bus_zero;
 
 
 
@@ -3926,29 +4064,49 @@ assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word95_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word95_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word95_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word95_written = ((card1_card_core1_regs_fifo2_reg_word95_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word95_written = ((card1_card_core1_regs_fifo2_reg_word95_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit64_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word95_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__limit64_whole = {(!card1_card_core1_regs_fifo2_reg_word95_zero_above), card1_card_core1_regs_fifo2_reg_word95_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95__limit64_whole, card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit64_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word95_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word95__limit64_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95__limit64_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word95_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word95_written[32-1:8] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word95__limit64_whole[9-1:8] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word95_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written;
         card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__above44_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__above44_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95_zero_above = card1_card_core1_regs_fifo2_reg_word95_set_selected ? card1_card_core1_regs_fifo2_reg_word95__above44_set_zero : card1_card_core1_regs_fifo2_reg_word95__above44_bus_zero;
 
 
 
@@ -3992,29 +4150,49 @@ assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word96_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word96_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word96_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word96_written = ((card1_card_core1_regs_fifo2_reg_word96_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word96_written = ((card1_card_core1_regs_fifo2_reg_word96_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit65_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word96_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__limit65_whole = {(!card1_card_core1_regs_fifo2_reg_word96_zero_above), card1_card_core1_regs_fifo2_reg_word96_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96__limit65_whole, card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit65_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word96_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word96__limit65_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96__limit65_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word96_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word96_written[32-1:8] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word96__limit65_whole[9-1:8] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word96_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written;
         card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__above45_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__above45_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_zero_above = card1_card_core1_regs_fifo2_reg_word96_set_selected ? card1_card_core1_regs_fifo2_reg_word96__above45_set_zero : card1_card_core1_regs_fifo2_reg_word96__above45_bus_zero;
 
 
 
@@ -4058,29 +4236,49 @@ assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word97_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word97_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word97_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word97_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word97_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word97_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word97_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word97_written = ((card1_card_core1_regs_fifo2_reg_word97_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word97_written = ((card1_card_core1_regs_fifo2_reg_word97_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit66_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word97_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__limit66_whole = {(!card1_card_core1_regs_fifo2_reg_word97_zero_above), card1_card_core1_regs_fifo2_reg_word97_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97__limit66_whole, card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit66_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word97_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word97_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word97__limit66_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word97__limit66_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word97_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word97_written[32-1:8] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word97__limit66_whole[9-1:8] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word97_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written;
         card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__above46_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__above46_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_zero_above = card1_card_core1_regs_fifo2_reg_word97_set_selected ? card1_card_core1_regs_fifo2_reg_word97__above46_set_zero : card1_card_core1_regs_fifo2_reg_word97__above46_bus_zero;
 
 
 
@@ -4124,18 +4322,12 @@ assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {26'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word98_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word98_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word98_written = card1_card_core1_regs_fifo2_set_value[6-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown_wide[6-1:0] & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[6-1:0];
+assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written;
 
 
 
@@ -4179,29 +4371,49 @@ assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word99_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
-        card1_card_core1_regs_fifo2_reg_word99_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word99_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word99_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word99_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word99_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word99_written = ((card1_card_core1_regs_fifo2_reg_word99_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word99_written = ((card1_card_core1_regs_fifo2_reg_word99_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word99_written) begin: card1_card_core1_regs_fifo2_reg_word99__limit68_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word99_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__limit68_whole = {(!card1_card_core1_regs_fifo2_reg_word99_zero_above), card1_card_core1_regs_fifo2_reg_word99_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99__limit68_whole, card1_card_core1_regs_fifo2_reg_word99_written) begin: card1_card_core1_regs_fifo2_reg_word99__limit68_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word99_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word99_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word99_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word99__limit68_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word99__limit68_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word99_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word99_written[32-1:16] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word99__limit68_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word99_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word99_honoured = card1_card_core1_regs_fifo2_reg_word99_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word99_honoured = card1_card_core1_regs_fifo2_reg_word99_written;
         card1_card_core1_regs_fifo2_reg_word99_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__above47_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__above47_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99_zero_above = card1_card_core1_regs_fifo2_reg_word99_set_selected ? card1_card_core1_regs_fifo2_reg_word99__above47_set_zero : card1_card_core1_regs_fifo2_reg_word99__above47_bus_zero;
 
 
 
@@ -4245,29 +4457,49 @@ assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word100_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word100_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word100_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word100_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word100_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word100_written = card1_card_core1_regs_fifo2_set_value[16-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word100_written = ((card1_card_core1_regs_fifo2_reg_word100_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word100_written = ((card1_card_core1_regs_fifo2_reg_word100_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word100_written) begin: card1_card_core1_regs_fifo2_reg_word100__limit69_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word100_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__limit69_whole = {(!card1_card_core1_regs_fifo2_reg_word100_zero_above), card1_card_core1_regs_fifo2_reg_word100_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100__limit69_whole, card1_card_core1_regs_fifo2_reg_word100_written) begin: card1_card_core1_regs_fifo2_reg_word100__limit69_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word100_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word100_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word100_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word100__limit69_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word100__limit69_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word100_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word100_written[32-1:16] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word100__limit69_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word100_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word100_honoured = card1_card_core1_regs_fifo2_reg_word100_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word100_honoured = card1_card_core1_regs_fifo2_reg_word100_written;
         card1_card_core1_regs_fifo2_reg_word100_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__above48_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__above48_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100_zero_above = card1_card_core1_regs_fifo2_reg_word100_set_selected ? card1_card_core1_regs_fifo2_reg_word100__above48_set_zero : card1_card_core1_regs_fifo2_reg_word100__above48_bus_zero;
 
 
 
@@ -4312,15 +4544,15 @@ assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word101_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word101_written) begin: card1_card_core1_regs_fifo2_reg_word101__limit70_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word101_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word101_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written[24-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word101_zero_above, card1_card_core1_regs_fifo2_reg_word101_sign, card1_card_core1_regs_fifo2_reg_word101_ones_above, card1_card_core1_regs_fifo2_reg_word101_written) begin: card1_card_core1_regs_fifo2_reg_word101__limit70_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word101_zero_above && (!card1_card_core1_regs_fifo2_reg_word101_written[(24 - 1)])) || (card1_card_core1_regs_fifo2_reg_word101_ones_above && card1_card_core1_regs_fifo2_reg_word101_written[(24 - 1)]))) begin
+        card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written;
         card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b0;
     end
-    else if (card1_card_core1_regs_fifo2_reg_word101_written[31]) begin
+    else if (card1_card_core1_regs_fifo2_reg_word101_sign) begin
         card1_card_core1_regs_fifo2_reg_word101_honoured = 8388608;
         card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b1;
     end
@@ -4329,6 +4561,18 @@ always @(card1_card_core1_regs_fifo2_reg_word101_written) begin: card1_card_core
         card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101__above49_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word101__above49_bus_ones = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 255);
+assign card1_card_core1_regs_fifo2_reg_word101__above49_bus_sign = (card1_card_core1_regs_fifo2_written_data[31] && card1_card_core1_regs_fifo2_written_mask[31]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_zero_above = card1_card_core1_regs_fifo2_reg_word101__above49_bus_zero;
+assign card1_card_core1_regs_fifo2_reg_word101_ones_above = card1_card_core1_regs_fifo2_reg_word101__above49_bus_ones;
+assign card1_card_core1_regs_fifo2_reg_word101_sign = card1_card_core1_regs_fifo2_reg_word101__above49_bus_sign;
 
 
 
@@ -4376,15 +4620,15 @@ assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word102_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit71_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word102_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word102_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[24-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word102_zero_above, card1_card_core1_regs_fifo2_reg_word102_sign, card1_card_core1_regs_fifo2_reg_word102_ones_above, card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit71_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word102_zero_above && (!card1_card_core1_regs_fifo2_reg_word102_written[(24 - 1)])) || (card1_card_core1_regs_fifo2_reg_word102_ones_above && card1_card_core1_regs_fifo2_reg_word102_written[(24 - 1)]))) begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written;
         card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b0;
     end
-    else if (card1_card_core1_regs_fifo2_reg_word102_written[31]) begin
+    else if (card1_card_core1_regs_fifo2_reg_word102_sign) begin
         card1_card_core1_regs_fifo2_reg_word102_honoured = 8388608;
         card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
     end
@@ -4393,6 +4637,18 @@ always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core
         card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102__above50_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word102__above50_bus_ones = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 255);
+assign card1_card_core1_regs_fifo2_reg_word102__above50_bus_sign = (card1_card_core1_regs_fifo2_written_data[31] && card1_card_core1_regs_fifo2_written_mask[31]);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_zero_above = card1_card_core1_regs_fifo2_reg_word102__above50_bus_zero;
+assign card1_card_core1_regs_fifo2_reg_word102_ones_above = card1_card_core1_regs_fifo2_reg_word102__above50_bus_ones;
+assign card1_card_core1_regs_fifo2_reg_word102_sign = card1_card_core1_regs_fifo2_reg_word102__above50_bus_sign;
 
 
 
@@ -4505,18 +4761,12 @@ assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {30'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word106_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word106_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word106_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_reg_word106_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_machine_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written;
 
 
 
@@ -4607,18 +4857,12 @@ assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {25'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[7-1:0];
+assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written;
 
 
 
@@ -4662,29 +4906,35 @@ assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {28'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word110_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word110_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word110_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown & (~card1_card_core1_regs_fifo2_written_mask[4-1:0])) | (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit74_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word110__limit74_whole = {(!card1_card_core1_regs_fifo2_reg_word110_zero_above), card1_card_core1_regs_fifo2_reg_word110_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110__limit74_whole, card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit74_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word110_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word110__limit74_whole[5-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110__limit74_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word110_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word110_written[32-1:4] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word110__limit74_whole[5-1:4] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word110_honoured = 15;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written[4-1:0];
+        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written;
         card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110__above51_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:4] & card1_card_core1_regs_fifo2_written_mask[32-1:4]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110_zero_above = card1_card_core1_regs_fifo2_reg_word110__above51_bus_zero;
 
 
 
@@ -4728,29 +4978,35 @@ assign card1_card_core1_regs_fifo2_reg_word111_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word111_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word111_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word111_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word111_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word111_written = ((card1_card_core1_regs_fifo2_reg_word111_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word111_written = ((card1_card_core1_regs_fifo2_reg_word111_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit75_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word111__limit75_whole = {(!card1_card_core1_regs_fifo2_reg_word111_zero_above), card1_card_core1_regs_fifo2_reg_word111_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111__limit75_whole, card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit75_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word111_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word111__limit75_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111__limit75_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word111_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word111_written[32-1:16] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word111__limit75_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word111_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word111_honoured = card1_card_core1_regs_fifo2_reg_word111_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word111_honoured = card1_card_core1_regs_fifo2_reg_word111_written;
         card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111__above52_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111_zero_above = card1_card_core1_regs_fifo2_reg_word111__above52_bus_zero;
 
 
 
@@ -4795,19 +5051,31 @@ assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word112_written = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit76_clamp_above_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word112__limit76_whole = {(!card1_card_core1_regs_fifo2_reg_word112_zero_above), card1_card_core1_regs_fifo2_reg_word112_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112__limit76_whole, card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit76_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word112_written[32-1:24] != 0)) begin
+    if ((card1_card_core1_regs_fifo2_reg_word112__limit76_whole[25-1:24] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word112_honoured = 16777215;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written[24-1:0];
+        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written;
         card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112__above53_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_zero_above = card1_card_core1_regs_fifo2_reg_word112__above53_bus_zero;
 
 
 
@@ -4859,7 +5127,7 @@ assign card1_card_core1_regs_fifo2_reg_word113_written = (card1_card_core1_regs_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[7-1:0];
+assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written;
 
 
 
@@ -4928,29 +5196,35 @@ assign card1_card_core1_regs_fifo2_reg_word115_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word115_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word115_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word115_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word115_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word115_written = ((card1_card_core1_regs_fifo2_reg_word115_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word115_written = ((card1_card_core1_regs_fifo2_reg_word115_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit78_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word115__limit78_whole = {(!card1_card_core1_regs_fifo2_reg_word115_zero_above), card1_card_core1_regs_fifo2_reg_word115_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115__limit78_whole, card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit78_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word115_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word115__limit78_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115__limit78_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word115_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word115_written[32-1:16] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word115__limit78_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word115_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written;
         card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115__above54_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_zero_above = card1_card_core1_regs_fifo2_reg_word115__above54_bus_zero;
 
 
 
@@ -4994,29 +5268,35 @@ assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word116_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word116_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word116_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word116_written = ((card1_card_core1_regs_fifo2_reg_word116_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word116_written = ((card1_card_core1_regs_fifo2_reg_word116_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit79_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word116__limit79_whole = {(!card1_card_core1_regs_fifo2_reg_word116_zero_above), card1_card_core1_regs_fifo2_reg_word116_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116__limit79_whole, card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit79_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word116_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word116__limit79_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word116__limit79_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word116_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word116_written[32-1:16] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word116__limit79_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word116_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written;
         card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116__above55_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_zero_above = card1_card_core1_regs_fifo2_reg_word116__above55_bus_zero;
 
 
 
@@ -5060,26 +5340,32 @@ assign card1_card_core1_regs_fifo2_reg_word117_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word117_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word117_shown_wide, card1_card_core1_regs_fifo2_reg_word117_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word117_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word117_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word117_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word117_written = ((card1_card_core1_regs_fifo2_reg_word117_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word117_written = ((card1_card_core1_regs_fifo2_reg_word117_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word117_written) begin: card1_card_core1_regs_fifo2_reg_word117__limit80_clamp_above_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word117__limit80_whole = {(!card1_card_core1_regs_fifo2_reg_word117_zero_above), card1_card_core1_regs_fifo2_reg_word117_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word117__limit80_whole, card1_card_core1_regs_fifo2_reg_word117_written) begin: card1_card_core1_regs_fifo2_reg_word117__limit80_clamp_above_power_of_two
     card1_card_core1_regs_fifo2_reg_word117_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word117_written[32-1:16] != 0)) begin
+    if ((card1_card_core1_regs_fifo2_reg_word117__limit80_whole[17-1:16] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word117_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word117_honoured = card1_card_core1_regs_fifo2_reg_word117_written[16-1:0];
+        card1_card_core1_regs_fifo2_reg_word117_honoured = card1_card_core1_regs_fifo2_reg_word117_written;
         card1_card_core1_regs_fifo2_reg_word117_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117__above56_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117_zero_above = card1_card_core1_regs_fifo2_reg_word117__above56_bus_zero;
 
 
 
@@ -5123,29 +5409,35 @@ assign card1_card_core1_regs_fifo2_reg_word118_shown_wide = {9'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word118_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word118_shown_wide, card1_card_core1_regs_fifo2_reg_word118_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word118_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word118_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word118_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word118_written = ((card1_card_core1_regs_fifo2_reg_word118_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word118_written = ((card1_card_core1_regs_fifo2_reg_word118_shown & (~card1_card_core1_regs_fifo2_written_mask[23-1:0])) | (card1_card_core1_regs_fifo2_written_data[23-1:0] & card1_card_core1_regs_fifo2_written_mask[23-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word118_written) begin: card1_card_core1_regs_fifo2_reg_word118__limit81_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word118__limit81_whole = {(!card1_card_core1_regs_fifo2_reg_word118_zero_above), card1_card_core1_regs_fifo2_reg_word118_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118__limit81_whole, card1_card_core1_regs_fifo2_reg_word118_written) begin: card1_card_core1_regs_fifo2_reg_word118__limit81_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word118_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word118_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word118_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word118__limit81_whole[24-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word118__limit81_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word118_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word118_written[32-1:23] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word118__limit81_whole[24-1:23] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word118_honoured = 8388607;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word118_honoured = card1_card_core1_regs_fifo2_reg_word118_written[23-1:0];
+        card1_card_core1_regs_fifo2_reg_word118_honoured = card1_card_core1_regs_fifo2_reg_word118_written;
         card1_card_core1_regs_fifo2_reg_word118_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118__above57_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:23] & card1_card_core1_regs_fifo2_written_mask[32-1:23]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118_zero_above = card1_card_core1_regs_fifo2_reg_word118__above57_bus_zero;
 
 
 
@@ -5189,29 +5481,49 @@ assign card1_card_core1_regs_fifo2_reg_word119_shown_wide = {24'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word119_mine_write = (card1_card_core1_regs_fifo2_written_addr == 148);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word119_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word119_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8))) begin
-        card1_card_core1_regs_fifo2_reg_word119_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word119_set_selected, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_reg_word119_shown, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word119_merge_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word119_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word119_written = card1_card_core1_regs_fifo2_set_value[8-1:0];
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word119_written = ((card1_card_core1_regs_fifo2_reg_word119_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word119_written = ((card1_card_core1_regs_fifo2_reg_word119_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word119_written) begin: card1_card_core1_regs_fifo2_reg_word119__limit82_clamp_unsigned_power_of_two
+
+assign card1_card_core1_regs_fifo2_reg_word119_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__limit82_whole = {(!card1_card_core1_regs_fifo2_reg_word119_zero_above), card1_card_core1_regs_fifo2_reg_word119_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119__limit82_whole, card1_card_core1_regs_fifo2_reg_word119_written) begin: card1_card_core1_regs_fifo2_reg_word119__limit82_clamp_unsigned_power_of_two
     card1_card_core1_regs_fifo2_reg_word119_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word119_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word119_written[1-1:0] < 1))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word119__limit82_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word119__limit82_whole[1-1:0] < 1))) begin
         card1_card_core1_regs_fifo2_reg_word119_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word119_written[32-1:8] != 0)) begin
+    else if ((card1_card_core1_regs_fifo2_reg_word119__limit82_whole[9-1:8] != 0)) begin
         card1_card_core1_regs_fifo2_reg_word119_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word119_honoured = card1_card_core1_regs_fifo2_reg_word119_written[8-1:0];
+        card1_card_core1_regs_fifo2_reg_word119_honoured = card1_card_core1_regs_fifo2_reg_word119_written;
         card1_card_core1_regs_fifo2_reg_word119_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__above58_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__above58_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119_zero_above = card1_card_core1_regs_fifo2_reg_word119_set_selected ? card1_card_core1_regs_fifo2_reg_word119__above58_set_zero : card1_card_core1_regs_fifo2_reg_word119__above58_bus_zero;
 
 
 
@@ -5255,26 +5567,32 @@ assign card1_card_core1_regs_fifo2_reg_word120_shown_wide = {30'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word120_mine_write = (card1_card_core1_regs_fifo2_written_addr == 152);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word120_shown_wide, card1_card_core1_regs_fifo2_reg_word120_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word120_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word120_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word120_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word120_written = ((card1_card_core1_regs_fifo2_reg_word120_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word120_written = ((card1_card_core1_regs_fifo2_step_mode & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word120_written) begin: card1_card_core1_regs_fifo2_reg_word120__limit83_clamp_above
+
+assign card1_card_core1_regs_fifo2_reg_word120__limit83_whole = {(!card1_card_core1_regs_fifo2_reg_word120_zero_above), card1_card_core1_regs_fifo2_reg_word120_written};
+
+
+always @(card1_card_core1_regs_fifo2_reg_word120__limit83_whole, card1_card_core1_regs_fifo2_reg_word120_written) begin: card1_card_core1_regs_fifo2_reg_word120__limit83_clamp_above
     card1_card_core1_regs_fifo2_reg_word120_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word120_written[32-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word120_written[2-1:0] > 2))) begin
+    if (((card1_card_core1_regs_fifo2_reg_word120__limit83_whole[3-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word120__limit83_whole[2-1:0] > 2))) begin
         card1_card_core1_regs_fifo2_reg_word120_honoured = 2;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word120_honoured = card1_card_core1_regs_fifo2_reg_word120_written[2-1:0];
+        card1_card_core1_regs_fifo2_reg_word120_honoured = card1_card_core1_regs_fifo2_reg_word120_written;
         card1_card_core1_regs_fifo2_reg_word120_out_of_range = 1'b0;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120__above59_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:2] & card1_card_core1_regs_fifo2_written_mask[32-1:2]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120_zero_above = card1_card_core1_regs_fifo2_reg_word120__above59_bus_zero;
 
 
 
