@@ -2400,38 +2400,38 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_regi
                 end
                 'h4: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
-                        pci_slave1_bar0[8-1:0] <= pci_slave1_config_data[8-1:0];
+                        pci_slave1_bar0[8-1:0] <= (pci_slave1_config_data[8-1:0] & 0);
                     end
                     if ((!pci_slave1_config_cbe_n[1])) begin
-                        pci_slave1_bar0[16-1:8] <= pci_slave1_config_data[16-1:8];
+                        pci_slave1_bar0[16-1:8] <= (pci_slave1_config_data[16-1:8] & 255);
                     end
                 end
                 'h5: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
-                        pci_slave1_bar1[8-1:0] <= pci_slave1_config_data[8-1:0];
+                        pci_slave1_bar1[8-1:0] <= (pci_slave1_config_data[8-1:0] & 0);
                     end
                     if ((!pci_slave1_config_cbe_n[1])) begin
-                        pci_slave1_bar1[16-1:8] <= pci_slave1_config_data[16-1:8];
+                        pci_slave1_bar1[16-1:8] <= (pci_slave1_config_data[16-1:8] & 240);
                     end
                     if ((!pci_slave1_config_cbe_n[2])) begin
-                        pci_slave1_bar1[24-1:16] <= pci_slave1_config_data[24-1:16];
+                        pci_slave1_bar1[24-1:16] <= (pci_slave1_config_data[24-1:16] & 255);
                     end
                     if ((!pci_slave1_config_cbe_n[3])) begin
-                        pci_slave1_bar1[32-1:24] <= pci_slave1_config_data[32-1:24];
+                        pci_slave1_bar1[32-1:24] <= (pci_slave1_config_data[32-1:24] & 255);
                     end
                 end
                 'h6: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
-                        pci_slave1_bar2[8-1:0] <= pci_slave1_config_data[8-1:0];
+                        pci_slave1_bar2[8-1:0] <= (pci_slave1_config_data[8-1:0] & 0);
                     end
                     if ((!pci_slave1_config_cbe_n[1])) begin
-                        pci_slave1_bar2[16-1:8] <= pci_slave1_config_data[16-1:8];
+                        pci_slave1_bar2[16-1:8] <= (pci_slave1_config_data[16-1:8] & 240);
                     end
                     if ((!pci_slave1_config_cbe_n[2])) begin
-                        pci_slave1_bar2[24-1:16] <= pci_slave1_config_data[24-1:16];
+                        pci_slave1_bar2[24-1:16] <= (pci_slave1_config_data[24-1:16] & 255);
                     end
                     if ((!pci_slave1_config_cbe_n[3])) begin
-                        pci_slave1_bar2[32-1:24] <= pci_slave1_config_data[32-1:24];
+                        pci_slave1_bar2[32-1:24] <= (pci_slave1_config_data[32-1:24] & 255);
                     end
                 end
                 'hf: begin

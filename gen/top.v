@@ -3231,38 +3231,38 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_confi
                 end
                 'h4: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
-                        card1_pci_slave2_bar0[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                        card1_pci_slave2_bar0[8-1:0] <= (card1_pci_slave2_config_data[8-1:0] & 0);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[1])) begin
-                        card1_pci_slave2_bar0[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                        card1_pci_slave2_bar0[16-1:8] <= (card1_pci_slave2_config_data[16-1:8] & 255);
                     end
                 end
                 'h5: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
-                        card1_pci_slave2_bar1[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                        card1_pci_slave2_bar1[8-1:0] <= (card1_pci_slave2_config_data[8-1:0] & 0);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[1])) begin
-                        card1_pci_slave2_bar1[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                        card1_pci_slave2_bar1[16-1:8] <= (card1_pci_slave2_config_data[16-1:8] & 240);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[2])) begin
-                        card1_pci_slave2_bar1[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
+                        card1_pci_slave2_bar1[24-1:16] <= (card1_pci_slave2_config_data[24-1:16] & 255);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[3])) begin
-                        card1_pci_slave2_bar1[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
+                        card1_pci_slave2_bar1[32-1:24] <= (card1_pci_slave2_config_data[32-1:24] & 255);
                     end
                 end
                 'h6: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
-                        card1_pci_slave2_bar2[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                        card1_pci_slave2_bar2[8-1:0] <= (card1_pci_slave2_config_data[8-1:0] & 0);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[1])) begin
-                        card1_pci_slave2_bar2[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                        card1_pci_slave2_bar2[16-1:8] <= (card1_pci_slave2_config_data[16-1:8] & 240);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[2])) begin
-                        card1_pci_slave2_bar2[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
+                        card1_pci_slave2_bar2[24-1:16] <= (card1_pci_slave2_config_data[24-1:16] & 255);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[3])) begin
-                        card1_pci_slave2_bar2[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
+                        card1_pci_slave2_bar2[32-1:24] <= (card1_pci_slave2_config_data[32-1:24] & 255);
                     end
                 end
                 'hf: begin
