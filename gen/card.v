@@ -366,21 +366,21 @@ wire card_core0_regs_fifo1_reg_word41_chain_in_clamped;
 wire [1:0] card_core0_regs_fifo1_reg_word42_honoured;
 wire card_core0_regs_fifo1_reg_word42_out_of_range;
 reg card_core0_regs_fifo1_reg_word42_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word42_merged;
 wire card_core0_regs_fifo1_reg_word42_mine;
 wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire card_core0_regs_fifo1_reg_word42_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
 wire [3:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
 wire [3:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
+wire [3:0] card_core0_regs_fifo1_reg_word43_merged;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 reg [31:0] card_core0_regs_fifo1_reg_word44_shown;
@@ -392,19 +392,19 @@ wire [9:0] card_core0_regs_fifo1_reg_word45_honoured;
 wire card_core0_regs_fifo1_reg_word45_out_of_range;
 reg [9:0] card_core0_regs_fifo1_reg_word45_shown;
 reg card_core0_regs_fifo1_reg_word45_clamped;
+wire [9:0] card_core0_regs_fifo1_reg_word45_merged;
 wire card_core0_regs_fifo1_reg_word45_mine;
 wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-wire [9:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
 wire [9:0] card_core0_regs_fifo1_reg_word46_honoured;
 reg [9:0] card_core0_regs_fifo1_reg_word46_shown;
+wire [9:0] card_core0_regs_fifo1_reg_word46_merged;
 wire card_core0_regs_fifo1_reg_word46_mine;
 wire card_core0_regs_fifo1_reg_word46_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
-wire [9:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
 reg [9:0] card_core0_regs_fifo1_reg_word46__store31_word_hw;
@@ -413,15 +413,16 @@ reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
 reg card_core0_regs_fifo1_reg_word47_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
 reg card_core0_regs_fifo1_reg_word47_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word47_merged;
 wire card_core0_regs_fifo1_reg_word47_mine;
 wire card_core0_regs_fifo1_reg_word47_mine_write;
 wire card_core0_regs_fifo1_reg_word47_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-wire [15:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word47__limit32_whole;
-wire card_core0_regs_fifo1_reg_word47__above20_bus_zero;
+wire card_core0_regs_fifo1_reg_word47__limit23_below;
+wire card_core0_regs_fifo1_reg_word47__limit23_above;
+wire [16:0] card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
@@ -437,136 +438,200 @@ wire card_core0_regs_fifo1_reg_word50_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
 wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word51_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word51_honoured;
 reg card_core0_regs_fifo1_reg_word51_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word51_shown;
+wire card_core0_regs_fifo1_reg_word51_bus_zero;
 reg card_core0_regs_fifo1_reg_word51_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word51_merged;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word51_set_low;
 wire card_core0_regs_fifo1_reg_word51_set_selected;
+wire card_core0_regs_fifo1_reg_word51_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word51_written;
 reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
 wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word51__limit33_whole;
-wire card_core0_regs_fifo1_reg_word51__above21_bus_zero;
-wire card_core0_regs_fifo1_reg_word51__above21_set_zero;
-wire card_core0_regs_fifo1_reg_word52_zero_above;
+reg card_core0_regs_fifo1_reg_word51__limit_either9_above;
+reg card_core0_regs_fifo1_reg_word51__limit_either9_below;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_bus_above;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_bus_below;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_set_above;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word52_honoured;
 reg card_core0_regs_fifo1_reg_word52_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word52_shown;
+wire card_core0_regs_fifo1_reg_word52_bus_zero;
 reg card_core0_regs_fifo1_reg_word52_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word52_merged;
 wire card_core0_regs_fifo1_reg_word52_mine;
 wire card_core0_regs_fifo1_reg_word52_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word52_set_low;
 wire card_core0_regs_fifo1_reg_word52_set_selected;
+wire card_core0_regs_fifo1_reg_word52_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word52__limit34_whole;
-wire card_core0_regs_fifo1_reg_word52__above22_bus_zero;
-wire card_core0_regs_fifo1_reg_word52__above22_set_zero;
-wire card_core0_regs_fifo1_reg_word53_zero_above;
+reg card_core0_regs_fifo1_reg_word52__limit_either10_above;
+reg card_core0_regs_fifo1_reg_word52__limit_either10_below;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_bus_above;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_bus_below;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_set_above;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word53_honoured;
 reg card_core0_regs_fifo1_reg_word53_out_of_range;
+wire card_core0_regs_fifo1_reg_word53_bus_zero;
 reg card_core0_regs_fifo1_reg_word53_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word53_merged;
 wire card_core0_regs_fifo1_reg_word53_mine;
 wire card_core0_regs_fifo1_reg_word53_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word53_set_low;
 wire card_core0_regs_fifo1_reg_word53_set_selected;
+wire card_core0_regs_fifo1_reg_word53_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word53_written;
 reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
 wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word53__limit35_whole;
-wire card_core0_regs_fifo1_reg_word53__above23_bus_zero;
-wire card_core0_regs_fifo1_reg_word53__above23_set_zero;
-wire card_core0_regs_fifo1_reg_word54_zero_above;
+reg card_core0_regs_fifo1_reg_word53__limit_either11_above;
+reg card_core0_regs_fifo1_reg_word53__limit_either11_below;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_bus_above;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_bus_below;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_set_above;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word54_honoured;
 reg card_core0_regs_fifo1_reg_word54_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word54_shown;
+wire card_core0_regs_fifo1_reg_word54_bus_zero;
 reg card_core0_regs_fifo1_reg_word54_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word54_merged;
 wire card_core0_regs_fifo1_reg_word54_mine;
 wire card_core0_regs_fifo1_reg_word54_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word54_set_low;
 wire card_core0_regs_fifo1_reg_word54_set_selected;
+wire card_core0_regs_fifo1_reg_word54_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
 reg [7:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
-wire [8:0] card_core0_regs_fifo1_reg_word54__limit36_whole;
-wire card_core0_regs_fifo1_reg_word54__above24_bus_zero;
-wire card_core0_regs_fifo1_reg_word54__above24_set_zero;
-wire card_core0_regs_fifo1_reg_word55_zero_above;
+reg card_core0_regs_fifo1_reg_word54__limit_either12_above;
+reg card_core0_regs_fifo1_reg_word54__limit_either12_below;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_bus_above;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_bus_below;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_set_above;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word55_honoured;
 reg card_core0_regs_fifo1_reg_word55_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word55_shown;
+wire card_core0_regs_fifo1_reg_word55_bus_zero;
 reg card_core0_regs_fifo1_reg_word55_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word55_merged;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word55_set_low;
 wire card_core0_regs_fifo1_reg_word55_set_selected;
+wire card_core0_regs_fifo1_reg_word55_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
 reg [7:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
-wire [8:0] card_core0_regs_fifo1_reg_word55__limit37_whole;
-wire card_core0_regs_fifo1_reg_word55__above25_bus_zero;
-wire card_core0_regs_fifo1_reg_word55__above25_set_zero;
-wire card_core0_regs_fifo1_reg_word56_zero_above;
+reg card_core0_regs_fifo1_reg_word55__limit_either13_above;
+reg card_core0_regs_fifo1_reg_word55__limit_either13_below;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_bus_above;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_bus_below;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_set_above;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word56_honoured;
 reg card_core0_regs_fifo1_reg_word56_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word56_shown;
+wire card_core0_regs_fifo1_reg_word56_bus_zero;
 reg card_core0_regs_fifo1_reg_word56_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word56_merged;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire card_core0_regs_fifo1_reg_word56_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word56_set_low;
 wire card_core0_regs_fifo1_reg_word56_set_selected;
+wire card_core0_regs_fifo1_reg_word56_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
 reg [7:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
-wire [8:0] card_core0_regs_fifo1_reg_word56__limit38_whole;
-wire card_core0_regs_fifo1_reg_word56__above26_bus_zero;
-wire card_core0_regs_fifo1_reg_word56__above26_set_zero;
+reg card_core0_regs_fifo1_reg_word56__limit_either14_above;
+reg card_core0_regs_fifo1_reg_word56__limit_either14_below;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_bus_above;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_bus_below;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_set_above;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole;
 wire [5:0] card_core0_regs_fifo1_reg_word57_honoured;
 wire card_core0_regs_fifo1_reg_word57_out_of_range;
 reg [5:0] card_core0_regs_fifo1_reg_word57_shown;
 reg card_core0_regs_fifo1_reg_word57_clamped;
+wire [5:0] card_core0_regs_fifo1_reg_word57_merged;
 wire card_core0_regs_fifo1_reg_word57_mine;
 wire card_core0_regs_fifo1_reg_word57_mine_write;
 wire card_core0_regs_fifo1_reg_word57_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
-wire [5:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word58_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word58_honoured;
 reg card_core0_regs_fifo1_reg_word58_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word58_shown;
+wire card_core0_regs_fifo1_reg_word58_bus_zero;
 reg card_core0_regs_fifo1_reg_word58_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word58_merged;
 wire card_core0_regs_fifo1_reg_word58_mine;
 wire card_core0_regs_fifo1_reg_word58_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word58_set_low;
 wire card_core0_regs_fifo1_reg_word58_set_selected;
+wire card_core0_regs_fifo1_reg_word58_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word58__limit40_whole;
-wire card_core0_regs_fifo1_reg_word58__above27_bus_zero;
-wire card_core0_regs_fifo1_reg_word58__above27_set_zero;
-wire card_core0_regs_fifo1_reg_word59_zero_above;
+reg card_core0_regs_fifo1_reg_word58__limit_either15_above;
+reg card_core0_regs_fifo1_reg_word58__limit_either15_below;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_bus_above;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_bus_below;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_set_above;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word59_honoured;
 reg card_core0_regs_fifo1_reg_word59_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word59_shown;
+wire card_core0_regs_fifo1_reg_word59_bus_zero;
 reg card_core0_regs_fifo1_reg_word59_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word59_merged;
 wire card_core0_regs_fifo1_reg_word59_mine;
 wire card_core0_regs_fifo1_reg_word59_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word59_set_low;
 wire card_core0_regs_fifo1_reg_word59_set_selected;
+wire card_core0_regs_fifo1_reg_word59_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
 reg [15:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word59__limit41_whole;
-wire card_core0_regs_fifo1_reg_word59__above28_bus_zero;
-wire card_core0_regs_fifo1_reg_word59__above28_set_zero;
+reg card_core0_regs_fifo1_reg_word59__limit_either16_above;
+reg card_core0_regs_fifo1_reg_word59__limit_either16_below;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_bus_above;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_bus_below;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_set_above;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole;
 wire card_core0_regs_fifo1_reg_word60_zero_above;
 wire card_core0_regs_fifo1_reg_word60_ones_above;
 wire card_core0_regs_fifo1_reg_word60_sign;
@@ -574,15 +639,12 @@ reg [23:0] card_core0_regs_fifo1_reg_word60_honoured;
 reg card_core0_regs_fifo1_reg_word60_out_of_range;
 reg [23:0] card_core0_regs_fifo1_reg_word60_shown;
 reg card_core0_regs_fifo1_reg_word60_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word60_merged;
 wire card_core0_regs_fifo1_reg_word60_mine;
 wire card_core0_regs_fifo1_reg_word60_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
-wire [23:0] card_core0_regs_fifo1_reg_word60_written;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word60__above29_bus_ones;
-wire card_core0_regs_fifo1_reg_word60__above29_bus_sign;
-wire card_core0_regs_fifo1_reg_word60__above29_bus_zero;
 reg card_core0_regs_fifo1_reg_word60__store42_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word60__store42_word_value;
 wire card_core0_regs_fifo1_reg_word61_zero_above;
@@ -592,15 +654,12 @@ reg [23:0] card_core0_regs_fifo1_reg_word61_honoured;
 reg card_core0_regs_fifo1_reg_word61_out_of_range;
 reg [23:0] card_core0_regs_fifo1_reg_word61_shown;
 reg card_core0_regs_fifo1_reg_word61_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word61_merged;
 wire card_core0_regs_fifo1_reg_word61_mine;
 wire card_core0_regs_fifo1_reg_word61_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
-wire [23:0] card_core0_regs_fifo1_reg_word61_written;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
-wire card_core0_regs_fifo1_reg_word61__above30_bus_ones;
-wire card_core0_regs_fifo1_reg_word61__above30_bus_sign;
-wire card_core0_regs_fifo1_reg_word61__above30_bus_zero;
 reg card_core0_regs_fifo1_reg_word61__store43_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word61__store43_word_value;
 wire [31:0] card_core0_regs_fifo1_reg_word62_shown;
@@ -621,11 +680,11 @@ wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
 wire [1:0] card_core0_regs_fifo1_reg_word65_honoured;
 wire card_core0_regs_fifo1_reg_word65_out_of_range;
 reg card_core0_regs_fifo1_reg_word65_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word65_merged;
 wire card_core0_regs_fifo1_reg_word65_mine;
 wire card_core0_regs_fifo1_reg_word65_mine_write;
 wire card_core0_regs_fifo1_reg_word65_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word65_written;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
 wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
 reg [19:0] card_core0_regs_fifo1_reg_word66_shown;
@@ -642,11 +701,11 @@ wire [6:0] card_core0_regs_fifo1_reg_word68_honoured;
 wire card_core0_regs_fifo1_reg_word68_out_of_range;
 reg [6:0] card_core0_regs_fifo1_reg_word68_shown;
 reg card_core0_regs_fifo1_reg_word68_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word68_merged;
 wire card_core0_regs_fifo1_reg_word68_mine;
 wire card_core0_regs_fifo1_reg_word68_mine_write;
 wire card_core0_regs_fifo1_reg_word68_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
-wire [6:0] card_core0_regs_fifo1_reg_word68_written;
 reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
 wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
 wire card_core0_regs_fifo1_reg_word69_zero_above;
@@ -654,51 +713,54 @@ reg [3:0] card_core0_regs_fifo1_reg_word69_honoured;
 reg card_core0_regs_fifo1_reg_word69_out_of_range;
 reg [3:0] card_core0_regs_fifo1_reg_word69_shown;
 reg card_core0_regs_fifo1_reg_word69_clamped;
+wire [3:0] card_core0_regs_fifo1_reg_word69_merged;
 wire card_core0_regs_fifo1_reg_word69_mine;
 wire card_core0_regs_fifo1_reg_word69_mine_write;
 wire card_core0_regs_fifo1_reg_word69_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word69_written;
 reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
 wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
-wire [4:0] card_core0_regs_fifo1_reg_word69__limit46_whole;
-wire card_core0_regs_fifo1_reg_word69__above31_bus_zero;
+wire card_core0_regs_fifo1_reg_word69__limit29_below;
+wire card_core0_regs_fifo1_reg_word69__limit29_above;
+wire [4:0] card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole;
 wire card_core0_regs_fifo1_reg_word70_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
 reg card_core0_regs_fifo1_reg_word70_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
 reg card_core0_regs_fifo1_reg_word70_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word70_merged;
 wire card_core0_regs_fifo1_reg_word70_mine;
 wire card_core0_regs_fifo1_reg_word70_mine_write;
 wire card_core0_regs_fifo1_reg_word70_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
-wire [15:0] card_core0_regs_fifo1_reg_word70_written;
 reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
 wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word70__limit47_whole;
-wire card_core0_regs_fifo1_reg_word70__above32_bus_zero;
+wire card_core0_regs_fifo1_reg_word70__limit30_below;
+wire card_core0_regs_fifo1_reg_word70__limit30_above;
+wire [16:0] card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole;
 wire card_core0_regs_fifo1_reg_word71_zero_above;
 reg [23:0] card_core0_regs_fifo1_reg_word71_honoured;
 reg card_core0_regs_fifo1_reg_word71_out_of_range;
 reg card_core0_regs_fifo1_reg_word71_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word71_merged;
 wire card_core0_regs_fifo1_reg_word71_mine;
 wire card_core0_regs_fifo1_reg_word71_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
-wire [23:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
-wire [24:0] card_core0_regs_fifo1_reg_word71__limit48_whole;
-wire card_core0_regs_fifo1_reg_word71__above33_bus_zero;
+wire card_core0_regs_fifo1_reg_word71__limit31_below;
+wire card_core0_regs_fifo1_reg_word71__limit31_above;
+wire [24:0] card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole;
 reg card_core0_regs_fifo1_reg_word71__store48_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word71__store48_word_value;
 wire [6:0] card_core0_regs_fifo1_reg_word72_honoured;
 wire card_core0_regs_fifo1_reg_word72_out_of_range;
 reg [6:0] card_core0_regs_fifo1_reg_word72_shown;
 reg card_core0_regs_fifo1_reg_word72_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word72_merged;
 wire card_core0_regs_fifo1_reg_word72_mine;
 wire card_core0_regs_fifo1_reg_word72_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
-wire [6:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word72__store49_word_strobe;
@@ -713,85 +775,98 @@ reg [15:0] card_core0_regs_fifo1_reg_word74_honoured;
 reg card_core0_regs_fifo1_reg_word74_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word74_shown;
 reg card_core0_regs_fifo1_reg_word74_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word74_merged;
 wire card_core0_regs_fifo1_reg_word74_mine;
 wire card_core0_regs_fifo1_reg_word74_mine_write;
 wire card_core0_regs_fifo1_reg_word74_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word74_shown_wide;
-wire [15:0] card_core0_regs_fifo1_reg_word74_written;
 reg [31:0] card_core0_regs_fifo1_reg_word74_chain_out_data;
 wire card_core0_regs_fifo1_reg_word74_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word74__limit50_whole;
-wire card_core0_regs_fifo1_reg_word74__above34_bus_zero;
+wire card_core0_regs_fifo1_reg_word74__limit33_below;
+wire card_core0_regs_fifo1_reg_word74__limit33_above;
+wire [16:0] card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole;
 wire card_core0_regs_fifo1_reg_word75_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word75_honoured;
 reg card_core0_regs_fifo1_reg_word75_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word75_shown;
 reg card_core0_regs_fifo1_reg_word75_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word75_merged;
 wire card_core0_regs_fifo1_reg_word75_mine;
 wire card_core0_regs_fifo1_reg_word75_mine_write;
 wire card_core0_regs_fifo1_reg_word75_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word75_shown_wide;
-wire [15:0] card_core0_regs_fifo1_reg_word75_written;
 reg [31:0] card_core0_regs_fifo1_reg_word75_chain_out_data;
 wire card_core0_regs_fifo1_reg_word75_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word75__limit51_whole;
-wire card_core0_regs_fifo1_reg_word75__above35_bus_zero;
+wire card_core0_regs_fifo1_reg_word75__limit34_below;
+wire card_core0_regs_fifo1_reg_word75__limit34_above;
+wire [16:0] card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole;
 wire card_core0_regs_fifo1_reg_word76_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word76_honoured;
 reg card_core0_regs_fifo1_reg_word76_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word76_shown;
 reg card_core0_regs_fifo1_reg_word76_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word76_merged;
 wire card_core0_regs_fifo1_reg_word76_mine;
 wire card_core0_regs_fifo1_reg_word76_mine_write;
 wire card_core0_regs_fifo1_reg_word76_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word76_shown_wide;
-wire [15:0] card_core0_regs_fifo1_reg_word76_written;
 reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
 wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
-wire [16:0] card_core0_regs_fifo1_reg_word76__limit52_whole;
-wire card_core0_regs_fifo1_reg_word76__above36_bus_zero;
+wire card_core0_regs_fifo1_reg_word76__limit35_below;
+wire card_core0_regs_fifo1_reg_word76__limit35_above;
+wire [16:0] card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole;
 wire card_core0_regs_fifo1_reg_word77_zero_above;
 reg [22:0] card_core0_regs_fifo1_reg_word77_honoured;
 reg card_core0_regs_fifo1_reg_word77_out_of_range;
 reg [22:0] card_core0_regs_fifo1_reg_word77_shown;
 reg card_core0_regs_fifo1_reg_word77_clamped;
+wire [22:0] card_core0_regs_fifo1_reg_word77_merged;
 wire card_core0_regs_fifo1_reg_word77_mine;
 wire card_core0_regs_fifo1_reg_word77_mine_write;
 wire card_core0_regs_fifo1_reg_word77_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
-wire [22:0] card_core0_regs_fifo1_reg_word77_written;
 reg [31:0] card_core0_regs_fifo1_reg_word77_chain_out_data;
 wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
-wire [23:0] card_core0_regs_fifo1_reg_word77__limit53_whole;
-wire card_core0_regs_fifo1_reg_word77__above37_bus_zero;
-wire card_core0_regs_fifo1_reg_word78_zero_above;
+wire card_core0_regs_fifo1_reg_word77__limit36_below;
+wire card_core0_regs_fifo1_reg_word77__limit36_above;
+wire [23:0] card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word78_honoured;
 reg card_core0_regs_fifo1_reg_word78_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word78_shown;
+wire card_core0_regs_fifo1_reg_word78_bus_zero;
 reg card_core0_regs_fifo1_reg_word78_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word78_merged;
 wire card_core0_regs_fifo1_reg_word78_mine;
 wire card_core0_regs_fifo1_reg_word78_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word78_set_low;
 wire card_core0_regs_fifo1_reg_word78_set_selected;
+wire card_core0_regs_fifo1_reg_word78_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word78_shown_wide;
 reg [7:0] card_core0_regs_fifo1_reg_word78_written;
 reg [31:0] card_core0_regs_fifo1_reg_word78_chain_out_data;
 wire card_core0_regs_fifo1_reg_word78_chain_out_clamped;
-wire [8:0] card_core0_regs_fifo1_reg_word78__limit54_whole;
-wire card_core0_regs_fifo1_reg_word78__above38_bus_zero;
-wire card_core0_regs_fifo1_reg_word78__above38_set_zero;
+reg card_core0_regs_fifo1_reg_word78__limit_either17_above;
+reg card_core0_regs_fifo1_reg_word78__limit_either17_below;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_bus_above;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_bus_below;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_set_above;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole;
 wire card_core0_regs_fifo1_reg_word79_zero_above;
 reg [1:0] card_core0_regs_fifo1_reg_word79_honoured;
 reg card_core0_regs_fifo1_reg_word79_out_of_range;
 reg card_core0_regs_fifo1_reg_word79_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word79_merged;
 wire card_core0_regs_fifo1_reg_word79_mine;
 wire card_core0_regs_fifo1_reg_word79_mine_write;
 wire card_core0_regs_fifo1_reg_word79_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word79_shown_wide;
-wire [1:0] card_core0_regs_fifo1_reg_word79_written;
 reg [31:0] card_core0_regs_fifo1_reg_word79_chain_out_data;
 wire card_core0_regs_fifo1_reg_word79_chain_out_clamped;
-wire [2:0] card_core0_regs_fifo1_reg_word79__limit55_whole;
-wire card_core0_regs_fifo1_reg_word79__above39_bus_zero;
+wire card_core0_regs_fifo1_reg_word79__limit37_below;
+wire card_core0_regs_fifo1_reg_word79__limit37_above;
+wire [2:0] card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole;
 reg [6:0] card_core0_regs_fifo1_reg_word80_shown;
 wire card_core0_regs_fifo1_reg_word80_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word80_shown_wide;
@@ -2623,11 +2698,11 @@ assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word42_merged = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written;
+assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_merged;
 
 
 
@@ -2672,11 +2747,11 @@ assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word43_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+assign card_core0_regs_fifo1_reg_word43_merged = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written;
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_merged;
 
 
 
@@ -2746,11 +2821,11 @@ assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
+assign card_core0_regs_fifo1_reg_word45_merged = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written;
+assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_merged;
 
 
 
@@ -2795,11 +2870,11 @@ assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word46_written = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
+assign card_core0_regs_fifo1_reg_word46_merged = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written;
+assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_merged;
 
 
 
@@ -2844,31 +2919,34 @@ assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word47__limit32_whole = {(!card_core0_regs_fifo1_reg_word47_zero_above), card_core0_regs_fifo1_reg_word47_written};
+assign card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole = {(!card_core0_regs_fifo1_reg_word47_zero_above), card_core0_regs_fifo1_reg_word47_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word47__limit32_whole, card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit32_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word47__limit32_whole[17-1:16] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word47__limit23_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word47__limit23_above = (card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word47__limit23_below, card_core0_regs_fifo1_reg_word47__limit23_above, card_core0_regs_fifo1_reg_word47_merged) begin: card_core0_regs_fifo1_reg_word47__limit23__clamp18_clamp
+    card_core0_regs_fifo1_reg_word47_out_of_range = (card_core0_regs_fifo1_reg_word47__limit23_below || card_core0_regs_fifo1_reg_word47__limit23_above);
+    if (card_core0_regs_fifo1_reg_word47__limit23_below) begin
+        card_core0_regs_fifo1_reg_word47_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word47__limit23_above) begin
         card_core0_regs_fifo1_reg_word47_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written;
-        card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word47__above20_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word47_zero_above = card_core0_regs_fifo1_reg_word47__above20_bus_zero;
+assign card_core0_regs_fifo1_reg_word47_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -2978,49 +3056,72 @@ assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word51_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word51_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word51_set_selected) begin
-        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word51_merged = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word51_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0));
 
 
-
-assign card_core0_regs_fifo1_reg_word51__limit33_whole = {(!card_core0_regs_fifo1_reg_word51_zero_above), card_core0_regs_fifo1_reg_word51_written};
-
-
-always @(card_core0_regs_fifo1_reg_word51__limit33_whole, card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit33_clamp_unsigned
-    card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word51__limit33_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word51__limit33_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word51__limit33_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word51__limit33_whole[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word51_honoured = 32768;
+always @(card_core0_regs_fifo1_reg_word51_merged, card_core0_regs_fifo1_reg_word51_set_low, card_core0_regs_fifo1_reg_word51_set_selected) begin: card_core0_regs_fifo1_reg_word51_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word51_set_selected) begin
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_reg_word51_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written;
-        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_reg_word51_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word51__above21_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word51_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word51_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word51_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word51__above21_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole = {(!card_core0_regs_fifo1_reg_word51_set_zero), card_core0_regs_fifo1_reg_word51_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word51_zero_above = card_core0_regs_fifo1_reg_word51_set_selected ? card_core0_regs_fifo1_reg_word51__above21_set_zero : card_core0_regs_fifo1_reg_word51__above21_bus_zero;
+assign card_core0_regs_fifo1_reg_word51__limit_either9_set_below = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word51__limit_either9_set_above = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[16-1:0] > 32768));
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole = {(!card_core0_regs_fifo1_reg_word51_bus_zero), card_core0_regs_fifo1_reg_word51_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit_either9_bus_below = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word51__limit_either9_bus_above = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[16-1:0] > 32768));
+
+
+always @(card_core0_regs_fifo1_reg_word51__limit_either9_set_below, card_core0_regs_fifo1_reg_word51_set_selected, card_core0_regs_fifo1_reg_word51__limit_either9_bus_above, card_core0_regs_fifo1_reg_word51__limit_either9_set_above, card_core0_regs_fifo1_reg_word51__limit_either9_bus_below) begin: card_core0_regs_fifo1_reg_word51__limit_either9_choose
+    if (card_core0_regs_fifo1_reg_word51_set_selected) begin
+        card_core0_regs_fifo1_reg_word51__limit_either9_below = card_core0_regs_fifo1_reg_word51__limit_either9_set_below;
+        card_core0_regs_fifo1_reg_word51__limit_either9_above = card_core0_regs_fifo1_reg_word51__limit_either9_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51__limit_either9_below = card_core0_regs_fifo1_reg_word51__limit_either9_bus_below;
+        card_core0_regs_fifo1_reg_word51__limit_either9_above = card_core0_regs_fifo1_reg_word51__limit_either9_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word51__limit_either9_below, card_core0_regs_fifo1_reg_word51__limit_either9_above, card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit_either9__clamp19_clamp
+    card_core0_regs_fifo1_reg_word51_out_of_range = (card_core0_regs_fifo1_reg_word51__limit_either9_below || card_core0_regs_fifo1_reg_word51__limit_either9_above);
+    if (card_core0_regs_fifo1_reg_word51__limit_either9_below) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word51__limit_either9_above) begin
+        card_core0_regs_fifo1_reg_word51_honoured = 32768;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written;
+    end
+end
 
 
 
@@ -3064,49 +3165,72 @@ assign card_core0_regs_fifo1_reg_word52_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word52_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word52_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word52_set_selected) begin
-        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word52_written = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word52_merged = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word52_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1));
 
 
-
-assign card_core0_regs_fifo1_reg_word52__limit34_whole = {(!card_core0_regs_fifo1_reg_word52_zero_above), card_core0_regs_fifo1_reg_word52_written};
-
-
-always @(card_core0_regs_fifo1_reg_word52__limit34_whole, card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit34_clamp_unsigned
-    card_core0_regs_fifo1_reg_word52_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word52__limit34_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word52__limit34_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word52_honoured = 1;
-    end
-    else if (((card_core0_regs_fifo1_reg_word52__limit34_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word52__limit34_whole[16-1:0] > 32768))) begin
-        card_core0_regs_fifo1_reg_word52_honoured = 32768;
+always @(card_core0_regs_fifo1_reg_word52_merged, card_core0_regs_fifo1_reg_word52_set_low, card_core0_regs_fifo1_reg_word52_set_selected) begin: card_core0_regs_fifo1_reg_word52_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word52_set_selected) begin
+        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_reg_word52_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written;
-        card_core0_regs_fifo1_reg_word52_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_reg_word52_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word52__above22_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word52_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word52_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word52_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word52__above22_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole = {(!card_core0_regs_fifo1_reg_word52_set_zero), card_core0_regs_fifo1_reg_word52_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word52_zero_above = card_core0_regs_fifo1_reg_word52_set_selected ? card_core0_regs_fifo1_reg_word52__above22_set_zero : card_core0_regs_fifo1_reg_word52__above22_bus_zero;
+assign card_core0_regs_fifo1_reg_word52__limit_either10_set_below = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word52__limit_either10_set_above = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[16-1:0] > 32768));
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole = {(!card_core0_regs_fifo1_reg_word52_bus_zero), card_core0_regs_fifo1_reg_word52_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit_either10_bus_below = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word52__limit_either10_bus_above = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[16-1:0] > 32768));
+
+
+always @(card_core0_regs_fifo1_reg_word52__limit_either10_set_below, card_core0_regs_fifo1_reg_word52_set_selected, card_core0_regs_fifo1_reg_word52__limit_either10_bus_above, card_core0_regs_fifo1_reg_word52__limit_either10_set_above, card_core0_regs_fifo1_reg_word52__limit_either10_bus_below) begin: card_core0_regs_fifo1_reg_word52__limit_either10_choose
+    if (card_core0_regs_fifo1_reg_word52_set_selected) begin
+        card_core0_regs_fifo1_reg_word52__limit_either10_below = card_core0_regs_fifo1_reg_word52__limit_either10_set_below;
+        card_core0_regs_fifo1_reg_word52__limit_either10_above = card_core0_regs_fifo1_reg_word52__limit_either10_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52__limit_either10_below = card_core0_regs_fifo1_reg_word52__limit_either10_bus_below;
+        card_core0_regs_fifo1_reg_word52__limit_either10_above = card_core0_regs_fifo1_reg_word52__limit_either10_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word52__limit_either10_below, card_core0_regs_fifo1_reg_word52__limit_either10_above, card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit_either10__clamp20_clamp
+    card_core0_regs_fifo1_reg_word52_out_of_range = (card_core0_regs_fifo1_reg_word52__limit_either10_below || card_core0_regs_fifo1_reg_word52__limit_either10_above);
+    if (card_core0_regs_fifo1_reg_word52__limit_either10_below) begin
+        card_core0_regs_fifo1_reg_word52_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word52__limit_either10_above) begin
+        card_core0_regs_fifo1_reg_word52_honoured = 32768;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written;
+    end
+end
 
 
 
@@ -3150,46 +3274,72 @@ assign card_core0_regs_fifo1_reg_word53_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word53_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_ramp_step, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word53_set_selected) begin
-        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word53_merged = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word53_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2));
 
 
-
-assign card_core0_regs_fifo1_reg_word53__limit35_whole = {(!card_core0_regs_fifo1_reg_word53_zero_above), card_core0_regs_fifo1_reg_word53_written};
-
-
-always @(card_core0_regs_fifo1_reg_word53__limit35_whole, card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit35_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word53_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word53__limit35_whole[17-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word53_honoured = 65535;
+always @(card_core0_regs_fifo1_reg_word53_merged, card_core0_regs_fifo1_reg_word53_set_low, card_core0_regs_fifo1_reg_word53_set_selected) begin: card_core0_regs_fifo1_reg_word53_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word53_set_selected) begin
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_reg_word53_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written;
-        card_core0_regs_fifo1_reg_word53_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_reg_word53_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word53__above23_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word53_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word53_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word53_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word53__above23_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole = {(!card_core0_regs_fifo1_reg_word53_set_zero), card_core0_regs_fifo1_reg_word53_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word53_zero_above = card_core0_regs_fifo1_reg_word53_set_selected ? card_core0_regs_fifo1_reg_word53__above23_set_zero : card_core0_regs_fifo1_reg_word53__above23_bus_zero;
+assign card_core0_regs_fifo1_reg_word53__limit_either11_set_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word53__limit_either11_set_above = (card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole[17-1:16] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole = {(!card_core0_regs_fifo1_reg_word53_bus_zero), card_core0_regs_fifo1_reg_word53_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_above = (card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word53__limit_either11_set_below, card_core0_regs_fifo1_reg_word53_set_selected, card_core0_regs_fifo1_reg_word53__limit_either11_bus_above, card_core0_regs_fifo1_reg_word53__limit_either11_set_above, card_core0_regs_fifo1_reg_word53__limit_either11_bus_below) begin: card_core0_regs_fifo1_reg_word53__limit_either11_choose
+    if (card_core0_regs_fifo1_reg_word53_set_selected) begin
+        card_core0_regs_fifo1_reg_word53__limit_either11_below = card_core0_regs_fifo1_reg_word53__limit_either11_set_below;
+        card_core0_regs_fifo1_reg_word53__limit_either11_above = card_core0_regs_fifo1_reg_word53__limit_either11_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53__limit_either11_below = card_core0_regs_fifo1_reg_word53__limit_either11_bus_below;
+        card_core0_regs_fifo1_reg_word53__limit_either11_above = card_core0_regs_fifo1_reg_word53__limit_either11_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word53__limit_either11_below, card_core0_regs_fifo1_reg_word53__limit_either11_above, card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit_either11__clamp21_clamp
+    card_core0_regs_fifo1_reg_word53_out_of_range = (card_core0_regs_fifo1_reg_word53__limit_either11_below || card_core0_regs_fifo1_reg_word53__limit_either11_above);
+    if (card_core0_regs_fifo1_reg_word53__limit_either11_below) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word53__limit_either11_above) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written;
+    end
+end
 
 
 
@@ -3233,49 +3383,72 @@ assign card_core0_regs_fifo1_reg_word54_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word54_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word54_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word54_set_selected) begin
-        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word54_written = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word54_merged = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word54_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3));
 
 
-
-assign card_core0_regs_fifo1_reg_word54__limit36_whole = {(!card_core0_regs_fifo1_reg_word54_zero_above), card_core0_regs_fifo1_reg_word54_written};
-
-
-always @(card_core0_regs_fifo1_reg_word54__limit36_whole, card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit36_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word54_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word54__limit36_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word54__limit36_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word54_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word54__limit36_whole[9-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word54_honoured = 255;
+always @(card_core0_regs_fifo1_reg_word54_merged, card_core0_regs_fifo1_reg_word54_set_low, card_core0_regs_fifo1_reg_word54_set_selected) begin: card_core0_regs_fifo1_reg_word54_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word54_set_selected) begin
+        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_reg_word54_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written;
-        card_core0_regs_fifo1_reg_word54_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_reg_word54_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word54__above24_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word54_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word54_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word54_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word54__above24_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole = {(!card_core0_regs_fifo1_reg_word54_set_zero), card_core0_regs_fifo1_reg_word54_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word54_zero_above = card_core0_regs_fifo1_reg_word54_set_selected ? card_core0_regs_fifo1_reg_word54__above24_set_zero : card_core0_regs_fifo1_reg_word54__above24_bus_zero;
+assign card_core0_regs_fifo1_reg_word54__limit_either12_set_below = ((card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word54__limit_either12_set_above = (card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole = {(!card_core0_regs_fifo1_reg_word54_bus_zero), card_core0_regs_fifo1_reg_word54_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit_either12_bus_below = ((card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word54__limit_either12_bus_above = (card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word54__limit_either12_set_below, card_core0_regs_fifo1_reg_word54_set_selected, card_core0_regs_fifo1_reg_word54__limit_either12_bus_above, card_core0_regs_fifo1_reg_word54__limit_either12_set_above, card_core0_regs_fifo1_reg_word54__limit_either12_bus_below) begin: card_core0_regs_fifo1_reg_word54__limit_either12_choose
+    if (card_core0_regs_fifo1_reg_word54_set_selected) begin
+        card_core0_regs_fifo1_reg_word54__limit_either12_below = card_core0_regs_fifo1_reg_word54__limit_either12_set_below;
+        card_core0_regs_fifo1_reg_word54__limit_either12_above = card_core0_regs_fifo1_reg_word54__limit_either12_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54__limit_either12_below = card_core0_regs_fifo1_reg_word54__limit_either12_bus_below;
+        card_core0_regs_fifo1_reg_word54__limit_either12_above = card_core0_regs_fifo1_reg_word54__limit_either12_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word54__limit_either12_below, card_core0_regs_fifo1_reg_word54__limit_either12_above, card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit_either12__clamp22_clamp
+    card_core0_regs_fifo1_reg_word54_out_of_range = (card_core0_regs_fifo1_reg_word54__limit_either12_below || card_core0_regs_fifo1_reg_word54__limit_either12_above);
+    if (card_core0_regs_fifo1_reg_word54__limit_either12_below) begin
+        card_core0_regs_fifo1_reg_word54_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word54__limit_either12_above) begin
+        card_core0_regs_fifo1_reg_word54_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written;
+    end
+end
 
 
 
@@ -3319,49 +3492,72 @@ assign card_core0_regs_fifo1_reg_word55_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word55_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word55_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word55_set_selected) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word55_merged = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word55_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4));
 
 
-
-assign card_core0_regs_fifo1_reg_word55__limit37_whole = {(!card_core0_regs_fifo1_reg_word55_zero_above), card_core0_regs_fifo1_reg_word55_written};
-
-
-always @(card_core0_regs_fifo1_reg_word55__limit37_whole, card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit37_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word55__limit37_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word55__limit37_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word55_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word55__limit37_whole[9-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word55_honoured = 255;
+always @(card_core0_regs_fifo1_reg_word55_merged, card_core0_regs_fifo1_reg_word55_set_low, card_core0_regs_fifo1_reg_word55_set_selected) begin: card_core0_regs_fifo1_reg_word55_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word55_set_selected) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_reg_word55_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written;
-        card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_reg_word55_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word55__above25_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word55_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word55_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word55_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word55__above25_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole = {(!card_core0_regs_fifo1_reg_word55_set_zero), card_core0_regs_fifo1_reg_word55_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word55_zero_above = card_core0_regs_fifo1_reg_word55_set_selected ? card_core0_regs_fifo1_reg_word55__above25_set_zero : card_core0_regs_fifo1_reg_word55__above25_bus_zero;
+assign card_core0_regs_fifo1_reg_word55__limit_either13_set_below = ((card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word55__limit_either13_set_above = (card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole = {(!card_core0_regs_fifo1_reg_word55_bus_zero), card_core0_regs_fifo1_reg_word55_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit_either13_bus_below = ((card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word55__limit_either13_bus_above = (card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word55__limit_either13_set_below, card_core0_regs_fifo1_reg_word55_set_selected, card_core0_regs_fifo1_reg_word55__limit_either13_bus_above, card_core0_regs_fifo1_reg_word55__limit_either13_set_above, card_core0_regs_fifo1_reg_word55__limit_either13_bus_below) begin: card_core0_regs_fifo1_reg_word55__limit_either13_choose
+    if (card_core0_regs_fifo1_reg_word55_set_selected) begin
+        card_core0_regs_fifo1_reg_word55__limit_either13_below = card_core0_regs_fifo1_reg_word55__limit_either13_set_below;
+        card_core0_regs_fifo1_reg_word55__limit_either13_above = card_core0_regs_fifo1_reg_word55__limit_either13_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55__limit_either13_below = card_core0_regs_fifo1_reg_word55__limit_either13_bus_below;
+        card_core0_regs_fifo1_reg_word55__limit_either13_above = card_core0_regs_fifo1_reg_word55__limit_either13_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word55__limit_either13_below, card_core0_regs_fifo1_reg_word55__limit_either13_above, card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit_either13__clamp23_clamp
+    card_core0_regs_fifo1_reg_word55_out_of_range = (card_core0_regs_fifo1_reg_word55__limit_either13_below || card_core0_regs_fifo1_reg_word55__limit_either13_above);
+    if (card_core0_regs_fifo1_reg_word55__limit_either13_below) begin
+        card_core0_regs_fifo1_reg_word55_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word55__limit_either13_above) begin
+        card_core0_regs_fifo1_reg_word55_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written;
+    end
+end
 
 
 
@@ -3405,49 +3601,72 @@ assign card_core0_regs_fifo1_reg_word56_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word56_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word56_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word56_set_selected) begin
-        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word56_written = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word56_merged = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word56_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5));
 
 
-
-assign card_core0_regs_fifo1_reg_word56__limit38_whole = {(!card_core0_regs_fifo1_reg_word56_zero_above), card_core0_regs_fifo1_reg_word56_written};
-
-
-always @(card_core0_regs_fifo1_reg_word56__limit38_whole, card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit38_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word56__limit38_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word56__limit38_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word56_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word56__limit38_whole[9-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word56_honoured = 255;
+always @(card_core0_regs_fifo1_reg_word56_merged, card_core0_regs_fifo1_reg_word56_set_low, card_core0_regs_fifo1_reg_word56_set_selected) begin: card_core0_regs_fifo1_reg_word56_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word56_set_selected) begin
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_reg_word56_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written;
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_reg_word56_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word56__above26_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word56_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word56_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word56_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word56__above26_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole = {(!card_core0_regs_fifo1_reg_word56_set_zero), card_core0_regs_fifo1_reg_word56_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word56_zero_above = card_core0_regs_fifo1_reg_word56_set_selected ? card_core0_regs_fifo1_reg_word56__above26_set_zero : card_core0_regs_fifo1_reg_word56__above26_bus_zero;
+assign card_core0_regs_fifo1_reg_word56__limit_either14_set_below = ((card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word56__limit_either14_set_above = (card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole = {(!card_core0_regs_fifo1_reg_word56_bus_zero), card_core0_regs_fifo1_reg_word56_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit_either14_bus_below = ((card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word56__limit_either14_bus_above = (card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word56__limit_either14_set_below, card_core0_regs_fifo1_reg_word56_set_selected, card_core0_regs_fifo1_reg_word56__limit_either14_bus_above, card_core0_regs_fifo1_reg_word56__limit_either14_set_above, card_core0_regs_fifo1_reg_word56__limit_either14_bus_below) begin: card_core0_regs_fifo1_reg_word56__limit_either14_choose
+    if (card_core0_regs_fifo1_reg_word56_set_selected) begin
+        card_core0_regs_fifo1_reg_word56__limit_either14_below = card_core0_regs_fifo1_reg_word56__limit_either14_set_below;
+        card_core0_regs_fifo1_reg_word56__limit_either14_above = card_core0_regs_fifo1_reg_word56__limit_either14_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56__limit_either14_below = card_core0_regs_fifo1_reg_word56__limit_either14_bus_below;
+        card_core0_regs_fifo1_reg_word56__limit_either14_above = card_core0_regs_fifo1_reg_word56__limit_either14_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word56__limit_either14_below, card_core0_regs_fifo1_reg_word56__limit_either14_above, card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit_either14__clamp24_clamp
+    card_core0_regs_fifo1_reg_word56_out_of_range = (card_core0_regs_fifo1_reg_word56__limit_either14_below || card_core0_regs_fifo1_reg_word56__limit_either14_above);
+    if (card_core0_regs_fifo1_reg_word56__limit_either14_below) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word56__limit_either14_above) begin
+        card_core0_regs_fifo1_reg_word56_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written;
+    end
+end
 
 
 
@@ -3492,11 +3711,11 @@ assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
+assign card_core0_regs_fifo1_reg_word57_merged = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written;
+assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_merged;
 
 
 
@@ -3540,49 +3759,72 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
 
 
-always @(card_core0_regs_fifo1_reg_word58_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word58_set_selected) begin
-        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word58_merged = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word58_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6));
 
 
-
-assign card_core0_regs_fifo1_reg_word58__limit40_whole = {(!card_core0_regs_fifo1_reg_word58_zero_above), card_core0_regs_fifo1_reg_word58_written};
-
-
-always @(card_core0_regs_fifo1_reg_word58__limit40_whole, card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit40_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word58__limit40_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word58__limit40_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word58_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word58__limit40_whole[17-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word58_honoured = 65535;
+always @(card_core0_regs_fifo1_reg_word58_merged, card_core0_regs_fifo1_reg_word58_set_low, card_core0_regs_fifo1_reg_word58_set_selected) begin: card_core0_regs_fifo1_reg_word58_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word58_set_selected) begin
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_reg_word58_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written;
-        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_reg_word58_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word58__above27_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word58_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word58_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word58_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word58__above27_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole = {(!card_core0_regs_fifo1_reg_word58_set_zero), card_core0_regs_fifo1_reg_word58_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word58_zero_above = card_core0_regs_fifo1_reg_word58_set_selected ? card_core0_regs_fifo1_reg_word58__above27_set_zero : card_core0_regs_fifo1_reg_word58__above27_bus_zero;
+assign card_core0_regs_fifo1_reg_word58__limit_either15_set_below = ((card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word58__limit_either15_set_above = (card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole[17-1:16] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole = {(!card_core0_regs_fifo1_reg_word58_bus_zero), card_core0_regs_fifo1_reg_word58_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit_either15_bus_below = ((card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word58__limit_either15_bus_above = (card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word58__limit_either15_set_below, card_core0_regs_fifo1_reg_word58_set_selected, card_core0_regs_fifo1_reg_word58__limit_either15_bus_above, card_core0_regs_fifo1_reg_word58__limit_either15_set_above, card_core0_regs_fifo1_reg_word58__limit_either15_bus_below) begin: card_core0_regs_fifo1_reg_word58__limit_either15_choose
+    if (card_core0_regs_fifo1_reg_word58_set_selected) begin
+        card_core0_regs_fifo1_reg_word58__limit_either15_below = card_core0_regs_fifo1_reg_word58__limit_either15_set_below;
+        card_core0_regs_fifo1_reg_word58__limit_either15_above = card_core0_regs_fifo1_reg_word58__limit_either15_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58__limit_either15_below = card_core0_regs_fifo1_reg_word58__limit_either15_bus_below;
+        card_core0_regs_fifo1_reg_word58__limit_either15_above = card_core0_regs_fifo1_reg_word58__limit_either15_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word58__limit_either15_below, card_core0_regs_fifo1_reg_word58__limit_either15_above, card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit_either15__clamp25_clamp
+    card_core0_regs_fifo1_reg_word58_out_of_range = (card_core0_regs_fifo1_reg_word58__limit_either15_below || card_core0_regs_fifo1_reg_word58__limit_either15_above);
+    if (card_core0_regs_fifo1_reg_word58__limit_either15_below) begin
+        card_core0_regs_fifo1_reg_word58_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word58__limit_either15_above) begin
+        card_core0_regs_fifo1_reg_word58_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written;
+    end
+end
 
 
 
@@ -3626,49 +3868,72 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
 
 
-always @(card_core0_regs_fifo1_reg_word59_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word59_set_selected) begin
-        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[16-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word59_merged = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word59_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7));
 
 
-
-assign card_core0_regs_fifo1_reg_word59__limit41_whole = {(!card_core0_regs_fifo1_reg_word59_zero_above), card_core0_regs_fifo1_reg_word59_written};
-
-
-always @(card_core0_regs_fifo1_reg_word59__limit41_whole, card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit41_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word59__limit41_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word59__limit41_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word59_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word59__limit41_whole[17-1:16] != 0)) begin
-        card_core0_regs_fifo1_reg_word59_honoured = 65535;
+always @(card_core0_regs_fifo1_reg_word59_merged, card_core0_regs_fifo1_reg_word59_set_low, card_core0_regs_fifo1_reg_word59_set_selected) begin: card_core0_regs_fifo1_reg_word59_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word59_set_selected) begin
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_reg_word59_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written;
-        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_reg_word59_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word59__above28_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word59_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word59_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word59_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word59__above28_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole = {(!card_core0_regs_fifo1_reg_word59_set_zero), card_core0_regs_fifo1_reg_word59_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word59_zero_above = card_core0_regs_fifo1_reg_word59_set_selected ? card_core0_regs_fifo1_reg_word59__above28_set_zero : card_core0_regs_fifo1_reg_word59__above28_bus_zero;
+assign card_core0_regs_fifo1_reg_word59__limit_either16_set_below = ((card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word59__limit_either16_set_above = (card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole[17-1:16] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole = {(!card_core0_regs_fifo1_reg_word59_bus_zero), card_core0_regs_fifo1_reg_word59_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit_either16_bus_below = ((card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word59__limit_either16_bus_above = (card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word59__limit_either16_set_below, card_core0_regs_fifo1_reg_word59_set_selected, card_core0_regs_fifo1_reg_word59__limit_either16_bus_above, card_core0_regs_fifo1_reg_word59__limit_either16_set_above, card_core0_regs_fifo1_reg_word59__limit_either16_bus_below) begin: card_core0_regs_fifo1_reg_word59__limit_either16_choose
+    if (card_core0_regs_fifo1_reg_word59_set_selected) begin
+        card_core0_regs_fifo1_reg_word59__limit_either16_below = card_core0_regs_fifo1_reg_word59__limit_either16_set_below;
+        card_core0_regs_fifo1_reg_word59__limit_either16_above = card_core0_regs_fifo1_reg_word59__limit_either16_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59__limit_either16_below = card_core0_regs_fifo1_reg_word59__limit_either16_bus_below;
+        card_core0_regs_fifo1_reg_word59__limit_either16_above = card_core0_regs_fifo1_reg_word59__limit_either16_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word59__limit_either16_below, card_core0_regs_fifo1_reg_word59__limit_either16_above, card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit_either16__clamp26_clamp
+    card_core0_regs_fifo1_reg_word59_out_of_range = (card_core0_regs_fifo1_reg_word59__limit_either16_below || card_core0_regs_fifo1_reg_word59__limit_either16_above);
+    if (card_core0_regs_fifo1_reg_word59__limit_either16_below) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word59__limit_either16_above) begin
+        card_core0_regs_fifo1_reg_word59_honoured = 65535;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written;
+    end
+end
 
 
 
@@ -3713,12 +3978,12 @@ assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word60_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word60_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word60_zero_above, card_core0_regs_fifo1_reg_word60_sign, card_core0_regs_fifo1_reg_word60_ones_above, card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit42_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word60_zero_above && (!card_core0_regs_fifo1_reg_word60_written[(24 - 1)])) || (card_core0_regs_fifo1_reg_word60_ones_above && card_core0_regs_fifo1_reg_word60_written[(24 - 1)]))) begin
-        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written;
+always @(card_core0_regs_fifo1_reg_word60_zero_above, card_core0_regs_fifo1_reg_word60_sign, card_core0_regs_fifo1_reg_word60_ones_above, card_core0_regs_fifo1_reg_word60_merged) begin: card_core0_regs_fifo1_reg_word60__limit25_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word60_zero_above && (!card_core0_regs_fifo1_reg_word60_merged[(24 - 1)])) || (card_core0_regs_fifo1_reg_word60_ones_above && card_core0_regs_fifo1_reg_word60_merged[(24 - 1)]))) begin
+        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_merged;
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b0;
     end
     else if (card_core0_regs_fifo1_reg_word60_sign) begin
@@ -3733,15 +3998,9 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60__above29_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-assign card_core0_regs_fifo1_reg_word60__above29_bus_ones = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
-assign card_core0_regs_fifo1_reg_word60__above29_bus_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
-
-
-
-assign card_core0_regs_fifo1_reg_word60_zero_above = card_core0_regs_fifo1_reg_word60__above29_bus_zero;
-assign card_core0_regs_fifo1_reg_word60_ones_above = card_core0_regs_fifo1_reg_word60__above29_bus_ones;
-assign card_core0_regs_fifo1_reg_word60_sign = card_core0_regs_fifo1_reg_word60__above29_bus_sign;
+assign card_core0_regs_fifo1_reg_word60_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word60_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
+assign card_core0_regs_fifo1_reg_word60_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
 
 
 
@@ -3789,12 +4048,12 @@ assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word61_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word61_zero_above, card_core0_regs_fifo1_reg_word61_sign, card_core0_regs_fifo1_reg_word61_ones_above, card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_reg_word61__limit43_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word61_zero_above && (!card_core0_regs_fifo1_reg_word61_written[(24 - 1)])) || (card_core0_regs_fifo1_reg_word61_ones_above && card_core0_regs_fifo1_reg_word61_written[(24 - 1)]))) begin
-        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written;
+always @(card_core0_regs_fifo1_reg_word61_zero_above, card_core0_regs_fifo1_reg_word61_sign, card_core0_regs_fifo1_reg_word61_ones_above, card_core0_regs_fifo1_reg_word61_merged) begin: card_core0_regs_fifo1_reg_word61__limit26_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word61_zero_above && (!card_core0_regs_fifo1_reg_word61_merged[(24 - 1)])) || (card_core0_regs_fifo1_reg_word61_ones_above && card_core0_regs_fifo1_reg_word61_merged[(24 - 1)]))) begin
+        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_merged;
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b0;
     end
     else if (card_core0_regs_fifo1_reg_word61_sign) begin
@@ -3809,15 +4068,9 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61__above30_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-assign card_core0_regs_fifo1_reg_word61__above30_bus_ones = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
-assign card_core0_regs_fifo1_reg_word61__above30_bus_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
-
-
-
-assign card_core0_regs_fifo1_reg_word61_zero_above = card_core0_regs_fifo1_reg_word61__above30_bus_zero;
-assign card_core0_regs_fifo1_reg_word61_ones_above = card_core0_regs_fifo1_reg_word61__above30_bus_ones;
-assign card_core0_regs_fifo1_reg_word61_sign = card_core0_regs_fifo1_reg_word61__above30_bus_sign;
+assign card_core0_regs_fifo1_reg_word61_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word61_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
+assign card_core0_regs_fifo1_reg_word61_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
 
 
 
@@ -3931,11 +4184,11 @@ assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word65_merged = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written;
+assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_merged;
 
 
 
@@ -4027,11 +4280,11 @@ assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
+assign card_core0_regs_fifo1_reg_word68_merged = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written;
+assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_merged;
 
 
 
@@ -4076,34 +4329,34 @@ assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word69_written = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]));
+assign card_core0_regs_fifo1_reg_word69_merged = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word69__limit46_whole = {(!card_core0_regs_fifo1_reg_word69_zero_above), card_core0_regs_fifo1_reg_word69_written};
+assign card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole = {(!card_core0_regs_fifo1_reg_word69_zero_above), card_core0_regs_fifo1_reg_word69_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word69__limit46_whole, card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit46_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word69_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word69__limit46_whole[5-1:1] == 0) && (card_core0_regs_fifo1_reg_word69__limit46_whole[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word69__limit29_below = ((card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole[5-1:1] == 0) && (card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word69__limit29_above = (card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole[5-1:4] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word69__limit29_below, card_core0_regs_fifo1_reg_word69__limit29_above, card_core0_regs_fifo1_reg_word69_merged) begin: card_core0_regs_fifo1_reg_word69__limit29__clamp27_clamp
+    card_core0_regs_fifo1_reg_word69_out_of_range = (card_core0_regs_fifo1_reg_word69__limit29_below || card_core0_regs_fifo1_reg_word69__limit29_above);
+    if (card_core0_regs_fifo1_reg_word69__limit29_below) begin
         card_core0_regs_fifo1_reg_word69_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word69__limit46_whole[5-1:4] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word69__limit29_above) begin
         card_core0_regs_fifo1_reg_word69_honoured = 15;
     end
     else begin
-        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written;
-        card_core0_regs_fifo1_reg_word69_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word69__above31_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:4] & card_core0_regs_fifo1_written_mask[32-1:4]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word69_zero_above = card_core0_regs_fifo1_reg_word69__above31_bus_zero;
+assign card_core0_regs_fifo1_reg_word69_zero_above = ((card_core0_regs_fifo1_written_data[32-1:4] & card_core0_regs_fifo1_written_mask[32-1:4]) == 0);
 
 
 
@@ -4148,34 +4401,34 @@ assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word70_merged = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word70__limit47_whole = {(!card_core0_regs_fifo1_reg_word70_zero_above), card_core0_regs_fifo1_reg_word70_written};
+assign card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole = {(!card_core0_regs_fifo1_reg_word70_zero_above), card_core0_regs_fifo1_reg_word70_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word70__limit47_whole, card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit47_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word70__limit47_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word70__limit47_whole[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word70__limit30_below = ((card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word70__limit30_above = (card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word70__limit30_below, card_core0_regs_fifo1_reg_word70__limit30_above, card_core0_regs_fifo1_reg_word70_merged) begin: card_core0_regs_fifo1_reg_word70__limit30__clamp28_clamp
+    card_core0_regs_fifo1_reg_word70_out_of_range = (card_core0_regs_fifo1_reg_word70__limit30_below || card_core0_regs_fifo1_reg_word70__limit30_above);
+    if (card_core0_regs_fifo1_reg_word70__limit30_below) begin
         card_core0_regs_fifo1_reg_word70_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word70__limit47_whole[17-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word70__limit30_above) begin
         card_core0_regs_fifo1_reg_word70_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written;
-        card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word70__above32_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word70_zero_above = card_core0_regs_fifo1_reg_word70__above32_bus_zero;
+assign card_core0_regs_fifo1_reg_word70_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4220,31 +4473,34 @@ assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word71_written = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word71_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word71__limit48_whole = {(!card_core0_regs_fifo1_reg_word71_zero_above), card_core0_regs_fifo1_reg_word71_written};
+assign card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole = {(!card_core0_regs_fifo1_reg_word71_zero_above), card_core0_regs_fifo1_reg_word71_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word71__limit48_whole, card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit48_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word71__limit48_whole[25-1:24] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word71__limit31_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word71__limit31_above = (card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole[25-1:24] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word71__limit31_below, card_core0_regs_fifo1_reg_word71__limit31_above, card_core0_regs_fifo1_reg_word71_merged) begin: card_core0_regs_fifo1_reg_word71__limit31__clamp29_clamp
+    card_core0_regs_fifo1_reg_word71_out_of_range = (card_core0_regs_fifo1_reg_word71__limit31_below || card_core0_regs_fifo1_reg_word71__limit31_above);
+    if (card_core0_regs_fifo1_reg_word71__limit31_below) begin
+        card_core0_regs_fifo1_reg_word71_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word71__limit31_above) begin
         card_core0_regs_fifo1_reg_word71_honoured = 16777215;
     end
     else begin
-        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written;
-        card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word71__above33_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word71_zero_above = card_core0_regs_fifo1_reg_word71__above33_bus_zero;
+assign card_core0_regs_fifo1_reg_word71_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
 
 
 
@@ -4292,11 +4548,11 @@ assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word72_written = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
+assign card_core0_regs_fifo1_reg_word72_merged = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written;
+assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_merged;
 
 
 
@@ -4366,34 +4622,34 @@ assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word74_written = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word74_merged = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word74__limit50_whole = {(!card_core0_regs_fifo1_reg_word74_zero_above), card_core0_regs_fifo1_reg_word74_written};
+assign card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole = {(!card_core0_regs_fifo1_reg_word74_zero_above), card_core0_regs_fifo1_reg_word74_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word74__limit50_whole, card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit50_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word74_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word74__limit50_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word74__limit50_whole[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word74__limit33_below = ((card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word74__limit33_above = (card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word74__limit33_below, card_core0_regs_fifo1_reg_word74__limit33_above, card_core0_regs_fifo1_reg_word74_merged) begin: card_core0_regs_fifo1_reg_word74__limit33__clamp30_clamp
+    card_core0_regs_fifo1_reg_word74_out_of_range = (card_core0_regs_fifo1_reg_word74__limit33_below || card_core0_regs_fifo1_reg_word74__limit33_above);
+    if (card_core0_regs_fifo1_reg_word74__limit33_below) begin
         card_core0_regs_fifo1_reg_word74_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word74__limit50_whole[17-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word74__limit33_above) begin
         card_core0_regs_fifo1_reg_word74_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_written;
-        card_core0_regs_fifo1_reg_word74_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word74__above34_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word74_zero_above = card_core0_regs_fifo1_reg_word74__above34_bus_zero;
+assign card_core0_regs_fifo1_reg_word74_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4438,34 +4694,34 @@ assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word75_written = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word75_merged = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word75__limit51_whole = {(!card_core0_regs_fifo1_reg_word75_zero_above), card_core0_regs_fifo1_reg_word75_written};
+assign card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole = {(!card_core0_regs_fifo1_reg_word75_zero_above), card_core0_regs_fifo1_reg_word75_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word75__limit51_whole, card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit51_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word75_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word75__limit51_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word75__limit51_whole[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word75__limit34_below = ((card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word75__limit34_above = (card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word75__limit34_below, card_core0_regs_fifo1_reg_word75__limit34_above, card_core0_regs_fifo1_reg_word75_merged) begin: card_core0_regs_fifo1_reg_word75__limit34__clamp31_clamp
+    card_core0_regs_fifo1_reg_word75_out_of_range = (card_core0_regs_fifo1_reg_word75__limit34_below || card_core0_regs_fifo1_reg_word75__limit34_above);
+    if (card_core0_regs_fifo1_reg_word75__limit34_below) begin
         card_core0_regs_fifo1_reg_word75_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word75__limit51_whole[17-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word75__limit34_above) begin
         card_core0_regs_fifo1_reg_word75_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written;
-        card_core0_regs_fifo1_reg_word75_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word75__above35_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word75_zero_above = card_core0_regs_fifo1_reg_word75__above35_bus_zero;
+assign card_core0_regs_fifo1_reg_word75_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4510,31 +4766,34 @@ assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word76_written = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word76__limit52_whole = {(!card_core0_regs_fifo1_reg_word76_zero_above), card_core0_regs_fifo1_reg_word76_written};
+assign card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole = {(!card_core0_regs_fifo1_reg_word76_zero_above), card_core0_regs_fifo1_reg_word76_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word76__limit52_whole, card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit52_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word76_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word76__limit52_whole[17-1:16] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word76__limit35_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word76__limit35_above = (card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word76__limit35_below, card_core0_regs_fifo1_reg_word76__limit35_above, card_core0_regs_fifo1_reg_word76_merged) begin: card_core0_regs_fifo1_reg_word76__limit35__clamp32_clamp
+    card_core0_regs_fifo1_reg_word76_out_of_range = (card_core0_regs_fifo1_reg_word76__limit35_below || card_core0_regs_fifo1_reg_word76__limit35_above);
+    if (card_core0_regs_fifo1_reg_word76__limit35_below) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word76__limit35_above) begin
         card_core0_regs_fifo1_reg_word76_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written;
-        card_core0_regs_fifo1_reg_word76_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word76__above36_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word76_zero_above = card_core0_regs_fifo1_reg_word76__above36_bus_zero;
+assign card_core0_regs_fifo1_reg_word76_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4579,34 +4838,34 @@ assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word77_written = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | (card_core0_regs_fifo1_written_data[23-1:0] & card_core0_regs_fifo1_written_mask[23-1:0]));
+assign card_core0_regs_fifo1_reg_word77_merged = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | (card_core0_regs_fifo1_written_data[23-1:0] & card_core0_regs_fifo1_written_mask[23-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word77__limit53_whole = {(!card_core0_regs_fifo1_reg_word77_zero_above), card_core0_regs_fifo1_reg_word77_written};
+assign card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole = {(!card_core0_regs_fifo1_reg_word77_zero_above), card_core0_regs_fifo1_reg_word77_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word77__limit53_whole, card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit53_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word77_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word77__limit53_whole[24-1:1] == 0) && (card_core0_regs_fifo1_reg_word77__limit53_whole[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word77__limit36_below = ((card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole[24-1:1] == 0) && (card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word77__limit36_above = (card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole[24-1:23] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word77__limit36_below, card_core0_regs_fifo1_reg_word77__limit36_above, card_core0_regs_fifo1_reg_word77_merged) begin: card_core0_regs_fifo1_reg_word77__limit36__clamp33_clamp
+    card_core0_regs_fifo1_reg_word77_out_of_range = (card_core0_regs_fifo1_reg_word77__limit36_below || card_core0_regs_fifo1_reg_word77__limit36_above);
+    if (card_core0_regs_fifo1_reg_word77__limit36_below) begin
         card_core0_regs_fifo1_reg_word77_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word77__limit53_whole[24-1:23] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word77__limit36_above) begin
         card_core0_regs_fifo1_reg_word77_honoured = 8388607;
     end
     else begin
-        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written;
-        card_core0_regs_fifo1_reg_word77_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word77__above37_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:23] & card_core0_regs_fifo1_written_mask[32-1:23]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word77_zero_above = card_core0_regs_fifo1_reg_word77__above37_bus_zero;
+assign card_core0_regs_fifo1_reg_word77_zero_above = ((card_core0_regs_fifo1_written_data[32-1:23] & card_core0_regs_fifo1_written_mask[32-1:23]) == 0);
 
 
 
@@ -4650,49 +4909,72 @@ assign card_core0_regs_fifo1_reg_word78_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word78_mine_write = (card_core0_regs_fifo1_written_addr == 148);
 
 
-always @(card_core0_regs_fifo1_reg_word78_set_selected, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_reg_word78_shown, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word78_merge_set_or_bytes
-    if (card_core0_regs_fifo1_reg_word78_set_selected) begin
-        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_set_value[8-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word78_written = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word78_merged = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
 
 
 
 assign card_core0_regs_fifo1_reg_word78_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8));
 
 
-
-assign card_core0_regs_fifo1_reg_word78__limit54_whole = {(!card_core0_regs_fifo1_reg_word78_zero_above), card_core0_regs_fifo1_reg_word78_written};
-
-
-always @(card_core0_regs_fifo1_reg_word78__limit54_whole, card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit54_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word78_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word78__limit54_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word78__limit54_whole[1-1:0] < 1))) begin
-        card_core0_regs_fifo1_reg_word78_honoured = 1;
-    end
-    else if ((card_core0_regs_fifo1_reg_word78__limit54_whole[9-1:8] != 0)) begin
-        card_core0_regs_fifo1_reg_word78_honoured = 255;
+always @(card_core0_regs_fifo1_reg_word78_merged, card_core0_regs_fifo1_reg_word78_set_low, card_core0_regs_fifo1_reg_word78_set_selected) begin: card_core0_regs_fifo1_reg_word78_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word78_set_selected) begin
+        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_reg_word78_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written;
-        card_core0_regs_fifo1_reg_word78_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_reg_word78_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word78__above38_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word78_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word78_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word78_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
 
 
 
-assign card_core0_regs_fifo1_reg_word78__above38_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole = {(!card_core0_regs_fifo1_reg_word78_set_zero), card_core0_regs_fifo1_reg_word78_set_low};
 
 
 
-assign card_core0_regs_fifo1_reg_word78_zero_above = card_core0_regs_fifo1_reg_word78_set_selected ? card_core0_regs_fifo1_reg_word78__above38_set_zero : card_core0_regs_fifo1_reg_word78__above38_bus_zero;
+assign card_core0_regs_fifo1_reg_word78__limit_either17_set_below = ((card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word78__limit_either17_set_above = (card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole = {(!card_core0_regs_fifo1_reg_word78_bus_zero), card_core0_regs_fifo1_reg_word78_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit_either17_bus_below = ((card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word78__limit_either17_bus_above = (card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word78__limit_either17_set_below, card_core0_regs_fifo1_reg_word78_set_selected, card_core0_regs_fifo1_reg_word78__limit_either17_bus_above, card_core0_regs_fifo1_reg_word78__limit_either17_set_above, card_core0_regs_fifo1_reg_word78__limit_either17_bus_below) begin: card_core0_regs_fifo1_reg_word78__limit_either17_choose
+    if (card_core0_regs_fifo1_reg_word78_set_selected) begin
+        card_core0_regs_fifo1_reg_word78__limit_either17_below = card_core0_regs_fifo1_reg_word78__limit_either17_set_below;
+        card_core0_regs_fifo1_reg_word78__limit_either17_above = card_core0_regs_fifo1_reg_word78__limit_either17_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78__limit_either17_below = card_core0_regs_fifo1_reg_word78__limit_either17_bus_below;
+        card_core0_regs_fifo1_reg_word78__limit_either17_above = card_core0_regs_fifo1_reg_word78__limit_either17_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word78__limit_either17_below, card_core0_regs_fifo1_reg_word78__limit_either17_above, card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit_either17__clamp34_clamp
+    card_core0_regs_fifo1_reg_word78_out_of_range = (card_core0_regs_fifo1_reg_word78__limit_either17_below || card_core0_regs_fifo1_reg_word78__limit_either17_above);
+    if (card_core0_regs_fifo1_reg_word78__limit_either17_below) begin
+        card_core0_regs_fifo1_reg_word78_honoured = 1;
+    end
+    else if (card_core0_regs_fifo1_reg_word78__limit_either17_above) begin
+        card_core0_regs_fifo1_reg_word78_honoured = 255;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written;
+    end
+end
 
 
 
@@ -4737,31 +5019,34 @@ assign card_core0_regs_fifo1_reg_word79_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word79_written = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word79_merged = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word79__limit55_whole = {(!card_core0_regs_fifo1_reg_word79_zero_above), card_core0_regs_fifo1_reg_word79_written};
+assign card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole = {(!card_core0_regs_fifo1_reg_word79_zero_above), card_core0_regs_fifo1_reg_word79_merged};
 
 
-always @(card_core0_regs_fifo1_reg_word79__limit55_whole, card_core0_regs_fifo1_reg_word79_written) begin: card_core0_regs_fifo1_reg_word79__limit55_clamp_above
-    card_core0_regs_fifo1_reg_word79_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word79__limit55_whole[3-1:2] != 0) || (card_core0_regs_fifo1_reg_word79__limit55_whole[2-1:0] > 2))) begin
+
+assign card_core0_regs_fifo1_reg_word79__limit37_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word79__limit37_above = ((card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole[3-1:2] != 0) || (card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole[2-1:0] > 2));
+
+
+always @(card_core0_regs_fifo1_reg_word79__limit37_below, card_core0_regs_fifo1_reg_word79__limit37_above, card_core0_regs_fifo1_reg_word79_merged) begin: card_core0_regs_fifo1_reg_word79__limit37__clamp35_clamp
+    card_core0_regs_fifo1_reg_word79_out_of_range = (card_core0_regs_fifo1_reg_word79__limit37_below || card_core0_regs_fifo1_reg_word79__limit37_above);
+    if (card_core0_regs_fifo1_reg_word79__limit37_below) begin
+        card_core0_regs_fifo1_reg_word79_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word79__limit37_above) begin
         card_core0_regs_fifo1_reg_word79_honoured = 2;
     end
     else begin
-        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_written;
-        card_core0_regs_fifo1_reg_word79_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_merged;
     end
 end
 
 
 
-assign card_core0_regs_fifo1_reg_word79__above39_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:2] & card_core0_regs_fifo1_written_mask[32-1:2]) == 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word79_zero_above = card_core0_regs_fifo1_reg_word79__above39_bus_zero;
+assign card_core0_regs_fifo1_reg_word79_zero_above = ((card_core0_regs_fifo1_written_data[32-1:2] & card_core0_regs_fifo1_written_mask[32-1:2]) == 0);
 
 
 

@@ -26,10 +26,12 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     no side effect here, and whether the bus reads at all is decided after
     the chain's end).  A register with a range keeps the written word's own
     bits (``written``, the bus's bytes merged with the register, or SET's
-    value) and, of the bits above them, only whether they are all 0 or all 1
-    and bit 31 (``_above``): those flags come from the bus's masked data or
-    from SET's value, the same for every register of the width, so the
-    registers share them.  Parameter: ``aliases``, more offsets the register
+    value) and, of the bits above them, only whether they are all 0 (all 1
+    and bit 31 too when signed, ``_above``): flags of the bus's masked data,
+    the same for every register of the width, so the registers share them.
+    A SET register compares the bus's word and SET's value with its bounds
+    each before it chooses (``_limit_either``): the compares of SET's value
+    are shared by the registers of one range.  Parameter: ``aliases``, more offsets the register
     answers at, exactly as at its own (X's and Y's per-axis block offsets in
     BAR2, ``models.registers.axis_aliases``).
 
@@ -47,6 +49,11 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     mine = Signal(bool(0))
     mine_write = Signal(bool(0))
     written = Signal(intbv(0)[width:])
+    # a SET register's sources: the bus's word (bytes merged with the register) and SET's value,
+    # each with "its bits above the width are all 0"
+    merged = Signal(intbv(0)[width:]) if spec.set_index is not None else written
+    set_low = Signal(intbv(0)[width:])
+    set_zero, bus_zero = Signal(bool(0)), Signal(bool(0))
     # of the written word's bits above ``width``: all 0, all 1, bit 31 (``_above``)
     zero_above, ones_above, sign = (Signal(bool(0)) for _ in range(3))
     set_selected = Signal(bool(0))
@@ -58,7 +65,6 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     set_target = spec.set_index if spec.set_index is not None else 0
     stored = spec.access in ("RW", "W1C", "W1S", "WP")
     shown = word.value if spec.access in ("RW", "W1C", "W1S") else word.hw
-
 
     @always_comb
     def select():
@@ -96,15 +102,21 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
         set_selected.next = set_mine and set_port.index == set_target
 
     @always_comb
-    def merge_set_or_bytes():
+    def set_or_bytes():
         if set_selected:
-            written.next = set_port.value[width:]
+            written.next = set_low
         else:
-            written.next = (word.value & ~bus.byte_mask[width:]) | (bus.wdata[width:] & bus.byte_mask[width:])
+            written.next = merged
+
+    @always_comb
+    def set_parts():
+        set_low.next = set_port.value[width:]
+        set_zero.next = set_port.value[32:width] == 0
+        bus_zero.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
 
     @always_comb
     def merge_bytes():
-        written.next = (word.value & ~bus.byte_mask[width:]) | (bus.wdata[width:] & bus.byte_mask[width:])
+        merged.next = (word.value & ~bus.byte_mask[width:]) | (bus.wdata[width:] & bus.byte_mask[width:])
 
     @always_comb
     def mask_bytes():
@@ -115,15 +127,18 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     elif spec.set_index is None:
         merge = [merge_bytes]
     else:
-        merge = [merge_set_or_bytes, set_select]
+        merge = [merge_bytes, set_select, set_or_bytes, set_parts]
     generators = [select if alias is None else select_either, read_chain, zero_extend(shown, shown_wide)]
     if not stored:
         return generators + [clamp_pass]
-    generators += [select_write if alias is None else select_write_either, *merge,
-                   _limit(written, zero_above, ones_above, sign, honoured, out_of_range, spec)]
-    if checked and width < 32:
-        generators.append(_above(bus, set_port.value, set_selected if spec.set_index is not None else None, width,
-                                 spec.signed, zero_above, ones_above, sign))
+    generators += [select_write if alias is None else select_write_either, *merge]
+    if spec.set_index is not None:
+        generators.append(_limit_either(set_selected, set_low, set_zero, merged, bus_zero, written, honoured,
+                                        out_of_range, spec))
+    else:
+        generators.append(_limit(written, zero_above, ones_above, sign, honoured, out_of_range, spec))
+        if checked and width < 32:
+            generators.append(_above(bus, width, spec.signed, zero_above, ones_above, sign))
     generators.append(clamp_chain if spec.access in ("RW", "WP") else clamp_pass)
     generators.append(_store(clock, reset, mine_write, bus, set_mine, set_port, set_target, written, honoured,
                              out_of_range, word, clamped, spec))
@@ -147,50 +162,23 @@ def zero_extend(narrow, wide):
 
 
 @block
-def _above(bus, set_value, set_selected, width, signed, zero_above, ones_above, sign):
-    """Of the written 32-bit word's bits ``width``..31 (the bus's data under
-    its byte mask, or ``set_value`` while ``set_selected``; None: never):
-    ``zero_above`` all 0; when ``signed``, also ``ones_above`` all 1 and
-    ``sign`` bit 31 (an unsigned range reads neither).  Each source's flags
-    come before the choice, so registers of one width share them."""
+def _above(bus, width, signed, zero_above, ones_above, sign):
+    """Of a bus write's 32-bit word (its data under its byte mask), bits ``width``..31:
+    ``zero_above`` all 0; when ``signed``, also ``ones_above`` all 1 and ``sign`` bit 31
+    (an unsigned range reads neither).  The same for every register of the width: shared."""
     ones = (1 << (32 - width)) - 1
-    bus_zero, bus_ones, bus_sign, set_zero = (Signal(bool(0)) for _ in range(4))
 
     @always_comb
-    def from_bus():
-        bus_zero.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
+    def unsigned_flags():
+        zero_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
 
     @always_comb
-    def from_bus_signed():
-        bus_zero.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
-        bus_ones.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == ones
-        bus_sign.next = bus.wdata[31] and bus.byte_mask[31]
+    def signed_flags():
+        zero_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
+        ones_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == ones
+        sign.next = bus.wdata[31] and bus.byte_mask[31]
 
-    @always_comb
-    def from_set():
-        set_zero.next = set_value[32:width] == 0
-
-    @always_comb
-    def choose():
-        zero_above.next = set_zero if set_selected else bus_zero
-
-    @always_comb
-    def bus_only():
-        zero_above.next = bus_zero
-
-    @always_comb
-    def bus_only_signed():
-        zero_above.next = bus_zero
-        ones_above.next = bus_ones
-        sign.next = bus_sign
-
-    if signed:
-        if set_selected is not None:
-            raise ValueError("a signed register with a range is written by the bus only (no SET index)")
-        return from_bus_signed, bus_only_signed
-    if set_selected is None:
-        return from_bus, bus_only
-    return from_bus, from_set, choose
+    return signed_flags if signed else unsigned_flags
 
 
 @block
@@ -232,6 +220,43 @@ def _limit(written, zero_above, ones_above, sign, honoured, out_of_range, spec):
                 out_of_range.next = True
         return clamp_signed
 
+    below, above = Signal(bool(0)), Signal(bool(0))
+    return _bounds(written, zero_above, below, above, spec), _clamp(written, below, above, honoured, out_of_range,
+                                                                    low_bits, high_bits)
+
+
+@block
+def _limit_either(set_selected, set_low, set_zero, merged, bus_zero, written, honoured, out_of_range, spec):
+    """A SET register's ``_limit``: ``written`` is ``set_low`` (SET's value, ``set_zero``
+    its bits above the width all 0) while ``set_selected``, else ``merged`` (the bus's,
+    ``bus_zero``); each source is compared with the bounds before the choice, so the
+    compares of SET's value are shared by the registers of one range."""
+    width, low, high = spec.width, spec.minimum, spec.maximum
+    if spec.signed or low is None or high is None or width == 32:
+        raise ValueError(f"{spec.name}: a SET register has an unsigned range narrower than 32 bits")
+    below, above, set_below, set_above, bus_below, bus_above = (Signal(bool(0)) for _ in range(6))
+
+    @always_comb
+    def choose():
+        if set_selected:
+            below.next = set_below
+            above.next = set_above
+        else:
+            below.next = bus_below
+            above.next = bus_above
+
+    return (_bounds(set_low, set_zero, set_below, set_above, spec),
+            _bounds(merged, bus_zero, bus_below, bus_above, spec), choose,
+            _clamp(written, below, above, honoured, out_of_range, low & ((1 << width) - 1), high))
+
+
+@block
+def _bounds(value, zero_above, below, above, spec):
+    """Of a written word (``value`` its low ``spec.width`` bits, ``zero_above`` its bits above
+    all 0), unsigned: ``below`` under the register's minimum, ``above`` over its maximum."""
+    width = spec.width
+    low = spec.minimum if spec.minimum is not None else 0
+    high = spec.maximum if spec.maximum is not None else (1 << width) - 1
     # the word as an unsigned number of width + 1 bits: the top bit set when any bit above width is
     # (it is then above high, as a 32-bit word with such a bit is)
     whole = Signal(intbv(0)[width + 1:])
@@ -240,58 +265,53 @@ def _limit(written, zero_above, ones_above, sign, honoured, out_of_range, spec):
 
     @always_comb
     def widen():
-        whole.next = concat(not zero_above, written)
+        whole.next = concat(not zero_above, value)
 
     @always_comb
-    def clamp_unsigned():
+    def compare():
         # compare only the bits a bound has; any higher bit set is out of range
-        out_of_range.next = True
-        if whole[top:low_top] == 0 and whole[low_top:] < low:
-            honoured.next = low_bits
-        elif whole[top:high_top] != 0 or whole[high_top:] > high:
-            honoured.next = high_bits
-        else:
-            honoured.next = written
-            out_of_range.next = False
+        below.next = whole[top:low_top] == 0 and whole[low_top:] < low
+        above.next = whole[top:high_top] != 0 or whole[high_top:] > high
 
     @always_comb
-    def clamp_unsigned_power_of_two():
+    def compare_power_of_two():
         # high is 2**high_top - 1: above it exactly when a higher bit is set
-        out_of_range.next = True
-        if whole[top:low_top] == 0 and whole[low_top:] < low:
-            honoured.next = low_bits
-        elif whole[top:high_top] != 0:
-            honoured.next = high_bits
-        else:
-            honoured.next = written
-            out_of_range.next = False
+        below.next = whole[top:low_top] == 0 and whole[low_top:] < low
+        above.next = whole[top:high_top] != 0
 
     @always_comb
-    def clamp_above_power_of_two():
-        # low is 0 (nothing below it) and high is 2**high_top - 1: out of range when a higher bit is set
-        out_of_range.next = True
-        if whole[top:high_top] != 0:
-            honoured.next = high_bits
-        else:
-            honoured.next = written
-            out_of_range.next = False
+    def compare_above_power_of_two():
+        # low is 0 (nothing below it) and high is 2**high_top - 1
+        below.next = False
+        above.next = whole[top:high_top] != 0
 
     @always_comb
-    def clamp_above():
+    def compare_above():
         # low is 0: only the upper bound is compared
-        out_of_range.next = True
-        if whole[top:high_top] != 0 or whole[high_top:] > high:
-            honoured.next = high_bits
-        else:
-            honoured.next = written
-            out_of_range.next = False
+        below.next = False
+        above.next = whole[top:high_top] != 0 or whole[high_top:] > high
 
     power_of_two = high == (1 << high_top) - 1
     if low == 0:
-        clamp = clamp_above_power_of_two if power_of_two else clamp_above
-    else:
-        clamp = clamp_unsigned_power_of_two if power_of_two else clamp_unsigned
-    return widen, clamp
+        return widen, (compare_above_power_of_two if power_of_two else compare_above)
+    return widen, (compare_power_of_two if power_of_two else compare)
+
+
+@block
+def _clamp(written, below, above, honoured, out_of_range, low_bits, high_bits):
+    """``honoured``: ``low_bits`` when ``below``, else ``high_bits`` when ``above``, else ``written``."""
+
+    @always_comb
+    def clamp():
+        out_of_range.next = below or above
+        if below:
+            honoured.next = low_bits
+        elif above:
+            honoured.next = high_bits
+        else:
+            honoured.next = written
+
+    return clamp
 
 
 @block
