@@ -366,21 +366,21 @@ wire card_core0_regs_fifo1_reg_word41_chain_in_clamped;
 wire [1:0] card_core0_regs_fifo1_reg_word42_honoured;
 wire card_core0_regs_fifo1_reg_word42_out_of_range;
 reg card_core0_regs_fifo1_reg_word42_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word42_merged;
 wire card_core0_regs_fifo1_reg_word42_mine;
 wire card_core0_regs_fifo1_reg_word42_mine_write;
 wire card_core0_regs_fifo1_reg_word42_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word42_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word42_written;
 reg [31:0] card_core0_regs_fifo1_reg_word42_chain_out_data;
 wire card_core0_regs_fifo1_reg_word42_chain_out_clamped;
 wire [3:0] card_core0_regs_fifo1_reg_word43_honoured;
 wire card_core0_regs_fifo1_reg_word43_out_of_range;
 wire [3:0] card_core0_regs_fifo1_reg_word43_shown;
 reg card_core0_regs_fifo1_reg_word43_clamped;
+wire [3:0] card_core0_regs_fifo1_reg_word43_merged;
 wire card_core0_regs_fifo1_reg_word43_mine;
 wire card_core0_regs_fifo1_reg_word43_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word43_shown_wide;
-wire [3:0] card_core0_regs_fifo1_reg_word43_written;
 reg [31:0] card_core0_regs_fifo1_reg_word43_chain_out_data;
 wire card_core0_regs_fifo1_reg_word43_chain_out_clamped;
 reg [31:0] card_core0_regs_fifo1_reg_word44_shown;
@@ -392,33 +392,37 @@ wire [9:0] card_core0_regs_fifo1_reg_word45_honoured;
 wire card_core0_regs_fifo1_reg_word45_out_of_range;
 reg [9:0] card_core0_regs_fifo1_reg_word45_shown;
 reg card_core0_regs_fifo1_reg_word45_clamped;
+wire [9:0] card_core0_regs_fifo1_reg_word45_merged;
 wire card_core0_regs_fifo1_reg_word45_mine;
 wire card_core0_regs_fifo1_reg_word45_mine_write;
 wire card_core0_regs_fifo1_reg_word45_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word45_shown_wide;
-reg [9:0] card_core0_regs_fifo1_reg_word45_written;
 reg [31:0] card_core0_regs_fifo1_reg_word45_chain_out_data;
 wire card_core0_regs_fifo1_reg_word45_chain_out_clamped;
 wire [9:0] card_core0_regs_fifo1_reg_word46_honoured;
 reg [9:0] card_core0_regs_fifo1_reg_word46_shown;
+wire [9:0] card_core0_regs_fifo1_reg_word46_merged;
 wire card_core0_regs_fifo1_reg_word46_mine;
 wire card_core0_regs_fifo1_reg_word46_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word46_shown_wide;
-wire [9:0] card_core0_regs_fifo1_reg_word46_written;
 reg [31:0] card_core0_regs_fifo1_reg_word46_chain_out_data;
 wire card_core0_regs_fifo1_reg_word46_chain_out_clamped;
 reg [9:0] card_core0_regs_fifo1_reg_word46__store31_word_hw;
+wire card_core0_regs_fifo1_reg_word47_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word47_honoured;
 reg card_core0_regs_fifo1_reg_word47_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word47_shown;
 reg card_core0_regs_fifo1_reg_word47_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word47_merged;
 wire card_core0_regs_fifo1_reg_word47_mine;
 wire card_core0_regs_fifo1_reg_word47_mine_write;
 wire card_core0_regs_fifo1_reg_word47_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word47_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word47_written;
 reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word47__limit23_below;
+wire card_core0_regs_fifo1_reg_word47__limit23_above;
+wire [16:0] card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
@@ -437,113 +441,223 @@ wire card_core0_regs_fifo1_reg_word50_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word51_honoured;
 reg card_core0_regs_fifo1_reg_word51_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word51_shown;
+wire card_core0_regs_fifo1_reg_word51_bus_zero;
 reg card_core0_regs_fifo1_reg_word51_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word51_merged;
 wire card_core0_regs_fifo1_reg_word51_mine;
 wire card_core0_regs_fifo1_reg_word51_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word51_set_low;
+wire card_core0_regs_fifo1_reg_word51_set_selected;
+wire card_core0_regs_fifo1_reg_word51_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word51_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word51_written;
+reg [15:0] card_core0_regs_fifo1_reg_word51_written;
 reg [31:0] card_core0_regs_fifo1_reg_word51_chain_out_data;
 wire card_core0_regs_fifo1_reg_word51_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word51__limit_either9_above;
+reg card_core0_regs_fifo1_reg_word51__limit_either9_below;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_bus_above;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_bus_below;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_set_above;
+wire card_core0_regs_fifo1_reg_word51__limit_either9_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word52_honoured;
 reg card_core0_regs_fifo1_reg_word52_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word52_shown;
+wire card_core0_regs_fifo1_reg_word52_bus_zero;
 reg card_core0_regs_fifo1_reg_word52_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word52_merged;
 wire card_core0_regs_fifo1_reg_word52_mine;
 wire card_core0_regs_fifo1_reg_word52_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word52_set_low;
+wire card_core0_regs_fifo1_reg_word52_set_selected;
+wire card_core0_regs_fifo1_reg_word52_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word52_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word52_written;
+reg [15:0] card_core0_regs_fifo1_reg_word52_written;
 reg [31:0] card_core0_regs_fifo1_reg_word52_chain_out_data;
 wire card_core0_regs_fifo1_reg_word52_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word52__limit_either10_above;
+reg card_core0_regs_fifo1_reg_word52__limit_either10_below;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_bus_above;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_bus_below;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_set_above;
+wire card_core0_regs_fifo1_reg_word52__limit_either10_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word53_honoured;
 reg card_core0_regs_fifo1_reg_word53_out_of_range;
+wire card_core0_regs_fifo1_reg_word53_bus_zero;
 reg card_core0_regs_fifo1_reg_word53_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word53_merged;
 wire card_core0_regs_fifo1_reg_word53_mine;
 wire card_core0_regs_fifo1_reg_word53_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word53_set_low;
+wire card_core0_regs_fifo1_reg_word53_set_selected;
+wire card_core0_regs_fifo1_reg_word53_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word53_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word53_written;
+reg [15:0] card_core0_regs_fifo1_reg_word53_written;
 reg [31:0] card_core0_regs_fifo1_reg_word53_chain_out_data;
 wire card_core0_regs_fifo1_reg_word53_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word53__limit_either11_above;
+reg card_core0_regs_fifo1_reg_word53__limit_either11_below;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_bus_above;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_bus_below;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_set_above;
+wire card_core0_regs_fifo1_reg_word53__limit_either11_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word54_honoured;
 reg card_core0_regs_fifo1_reg_word54_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word54_shown;
+wire card_core0_regs_fifo1_reg_word54_bus_zero;
 reg card_core0_regs_fifo1_reg_word54_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word54_merged;
 wire card_core0_regs_fifo1_reg_word54_mine;
 wire card_core0_regs_fifo1_reg_word54_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word54_set_low;
+wire card_core0_regs_fifo1_reg_word54_set_selected;
+wire card_core0_regs_fifo1_reg_word54_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word54_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word54_written;
+reg [7:0] card_core0_regs_fifo1_reg_word54_written;
 reg [31:0] card_core0_regs_fifo1_reg_word54_chain_out_data;
 wire card_core0_regs_fifo1_reg_word54_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word54__limit_either12_above;
+reg card_core0_regs_fifo1_reg_word54__limit_either12_below;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_bus_above;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_bus_below;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_set_above;
+wire card_core0_regs_fifo1_reg_word54__limit_either12_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word55_honoured;
 reg card_core0_regs_fifo1_reg_word55_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word55_shown;
+wire card_core0_regs_fifo1_reg_word55_bus_zero;
 reg card_core0_regs_fifo1_reg_word55_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word55_merged;
 wire card_core0_regs_fifo1_reg_word55_mine;
 wire card_core0_regs_fifo1_reg_word55_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word55_set_low;
+wire card_core0_regs_fifo1_reg_word55_set_selected;
+wire card_core0_regs_fifo1_reg_word55_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word55_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word55_written;
+reg [7:0] card_core0_regs_fifo1_reg_word55_written;
 reg [31:0] card_core0_regs_fifo1_reg_word55_chain_out_data;
 wire card_core0_regs_fifo1_reg_word55_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word55__limit_either13_above;
+reg card_core0_regs_fifo1_reg_word55__limit_either13_below;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_bus_above;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_bus_below;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_set_above;
+wire card_core0_regs_fifo1_reg_word55__limit_either13_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word56_honoured;
 reg card_core0_regs_fifo1_reg_word56_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word56_shown;
+wire card_core0_regs_fifo1_reg_word56_bus_zero;
 reg card_core0_regs_fifo1_reg_word56_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word56_merged;
 wire card_core0_regs_fifo1_reg_word56_mine;
 wire card_core0_regs_fifo1_reg_word56_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word56_set_low;
+wire card_core0_regs_fifo1_reg_word56_set_selected;
+wire card_core0_regs_fifo1_reg_word56_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word56_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word56_written;
+reg [7:0] card_core0_regs_fifo1_reg_word56_written;
 reg [31:0] card_core0_regs_fifo1_reg_word56_chain_out_data;
 wire card_core0_regs_fifo1_reg_word56_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word56__limit_either14_above;
+reg card_core0_regs_fifo1_reg_word56__limit_either14_below;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_bus_above;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_bus_below;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_set_above;
+wire card_core0_regs_fifo1_reg_word56__limit_either14_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole;
 wire [5:0] card_core0_regs_fifo1_reg_word57_honoured;
 wire card_core0_regs_fifo1_reg_word57_out_of_range;
 reg [5:0] card_core0_regs_fifo1_reg_word57_shown;
 reg card_core0_regs_fifo1_reg_word57_clamped;
+wire [5:0] card_core0_regs_fifo1_reg_word57_merged;
 wire card_core0_regs_fifo1_reg_word57_mine;
 wire card_core0_regs_fifo1_reg_word57_mine_write;
 wire card_core0_regs_fifo1_reg_word57_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word57_shown_wide;
-reg [5:0] card_core0_regs_fifo1_reg_word57_written;
 reg [31:0] card_core0_regs_fifo1_reg_word57_chain_out_data;
 wire card_core0_regs_fifo1_reg_word57_chain_out_clamped;
 reg [15:0] card_core0_regs_fifo1_reg_word58_honoured;
 reg card_core0_regs_fifo1_reg_word58_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word58_shown;
+wire card_core0_regs_fifo1_reg_word58_bus_zero;
 reg card_core0_regs_fifo1_reg_word58_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word58_merged;
 wire card_core0_regs_fifo1_reg_word58_mine;
 wire card_core0_regs_fifo1_reg_word58_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word58_set_low;
+wire card_core0_regs_fifo1_reg_word58_set_selected;
+wire card_core0_regs_fifo1_reg_word58_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word58_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word58_written;
+reg [15:0] card_core0_regs_fifo1_reg_word58_written;
 reg [31:0] card_core0_regs_fifo1_reg_word58_chain_out_data;
 wire card_core0_regs_fifo1_reg_word58_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word58__limit_either15_above;
+reg card_core0_regs_fifo1_reg_word58__limit_either15_below;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_bus_above;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_bus_below;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_set_above;
+wire card_core0_regs_fifo1_reg_word58__limit_either15_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word59_honoured;
 reg card_core0_regs_fifo1_reg_word59_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word59_shown;
+wire card_core0_regs_fifo1_reg_word59_bus_zero;
 reg card_core0_regs_fifo1_reg_word59_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word59_merged;
 wire card_core0_regs_fifo1_reg_word59_mine;
 wire card_core0_regs_fifo1_reg_word59_mine_write;
+wire [15:0] card_core0_regs_fifo1_reg_word59_set_low;
+wire card_core0_regs_fifo1_reg_word59_set_selected;
+wire card_core0_regs_fifo1_reg_word59_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word59_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word59_written;
+reg [15:0] card_core0_regs_fifo1_reg_word59_written;
 reg [31:0] card_core0_regs_fifo1_reg_word59_chain_out_data;
 wire card_core0_regs_fifo1_reg_word59_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word59__limit_either16_above;
+reg card_core0_regs_fifo1_reg_word59__limit_either16_below;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_bus_above;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_bus_below;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_set_above;
+wire card_core0_regs_fifo1_reg_word59__limit_either16_set_below;
+wire [16:0] card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole;
+wire [16:0] card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole;
+wire card_core0_regs_fifo1_reg_word60_zero_above;
+wire card_core0_regs_fifo1_reg_word60_ones_above;
+wire card_core0_regs_fifo1_reg_word60_sign;
 reg [23:0] card_core0_regs_fifo1_reg_word60_honoured;
 reg card_core0_regs_fifo1_reg_word60_out_of_range;
 reg [23:0] card_core0_regs_fifo1_reg_word60_shown;
 reg card_core0_regs_fifo1_reg_word60_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word60_merged;
 wire card_core0_regs_fifo1_reg_word60_mine;
 wire card_core0_regs_fifo1_reg_word60_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word60_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word60_written;
 reg [31:0] card_core0_regs_fifo1_reg_word60_chain_out_data;
 wire card_core0_regs_fifo1_reg_word60_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word60__store42_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word60__store42_word_value;
+wire card_core0_regs_fifo1_reg_word61_zero_above;
+wire card_core0_regs_fifo1_reg_word61_ones_above;
+wire card_core0_regs_fifo1_reg_word61_sign;
 reg [23:0] card_core0_regs_fifo1_reg_word61_honoured;
 reg card_core0_regs_fifo1_reg_word61_out_of_range;
 reg [23:0] card_core0_regs_fifo1_reg_word61_shown;
 reg card_core0_regs_fifo1_reg_word61_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word61_merged;
 wire card_core0_regs_fifo1_reg_word61_mine;
 wire card_core0_regs_fifo1_reg_word61_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word61_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word61_written;
 reg [31:0] card_core0_regs_fifo1_reg_word61_chain_out_data;
 wire card_core0_regs_fifo1_reg_word61_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word61__store43_word_strobe;
@@ -566,11 +680,11 @@ wire card_core0_regs_fifo1_reg_word64_chain_out_clamped;
 wire [1:0] card_core0_regs_fifo1_reg_word65_honoured;
 wire card_core0_regs_fifo1_reg_word65_out_of_range;
 reg card_core0_regs_fifo1_reg_word65_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word65_merged;
 wire card_core0_regs_fifo1_reg_word65_mine;
 wire card_core0_regs_fifo1_reg_word65_mine_write;
 wire card_core0_regs_fifo1_reg_word65_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word65_shown_wide;
-reg [1:0] card_core0_regs_fifo1_reg_word65_written;
 reg [31:0] card_core0_regs_fifo1_reg_word65_chain_out_data;
 wire card_core0_regs_fifo1_reg_word65_chain_out_clamped;
 reg [19:0] card_core0_regs_fifo1_reg_word66_shown;
@@ -587,54 +701,66 @@ wire [6:0] card_core0_regs_fifo1_reg_word68_honoured;
 wire card_core0_regs_fifo1_reg_word68_out_of_range;
 reg [6:0] card_core0_regs_fifo1_reg_word68_shown;
 reg card_core0_regs_fifo1_reg_word68_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word68_merged;
 wire card_core0_regs_fifo1_reg_word68_mine;
 wire card_core0_regs_fifo1_reg_word68_mine_write;
 wire card_core0_regs_fifo1_reg_word68_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word68_shown_wide;
-reg [6:0] card_core0_regs_fifo1_reg_word68_written;
 reg [31:0] card_core0_regs_fifo1_reg_word68_chain_out_data;
 wire card_core0_regs_fifo1_reg_word68_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word69_zero_above;
 reg [3:0] card_core0_regs_fifo1_reg_word69_honoured;
 reg card_core0_regs_fifo1_reg_word69_out_of_range;
 reg [3:0] card_core0_regs_fifo1_reg_word69_shown;
 reg card_core0_regs_fifo1_reg_word69_clamped;
+wire [3:0] card_core0_regs_fifo1_reg_word69_merged;
 wire card_core0_regs_fifo1_reg_word69_mine;
 wire card_core0_regs_fifo1_reg_word69_mine_write;
 wire card_core0_regs_fifo1_reg_word69_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word69_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word69_written;
 reg [31:0] card_core0_regs_fifo1_reg_word69_chain_out_data;
 wire card_core0_regs_fifo1_reg_word69_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word69__limit29_below;
+wire card_core0_regs_fifo1_reg_word69__limit29_above;
+wire [4:0] card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole;
+wire card_core0_regs_fifo1_reg_word70_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word70_honoured;
 reg card_core0_regs_fifo1_reg_word70_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word70_shown;
 reg card_core0_regs_fifo1_reg_word70_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word70_merged;
 wire card_core0_regs_fifo1_reg_word70_mine;
 wire card_core0_regs_fifo1_reg_word70_mine_write;
 wire card_core0_regs_fifo1_reg_word70_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word70_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word70_written;
 reg [31:0] card_core0_regs_fifo1_reg_word70_chain_out_data;
 wire card_core0_regs_fifo1_reg_word70_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word70__limit30_below;
+wire card_core0_regs_fifo1_reg_word70__limit30_above;
+wire [16:0] card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole;
+wire card_core0_regs_fifo1_reg_word71_zero_above;
 reg [23:0] card_core0_regs_fifo1_reg_word71_honoured;
 reg card_core0_regs_fifo1_reg_word71_out_of_range;
 reg card_core0_regs_fifo1_reg_word71_clamped;
+wire [23:0] card_core0_regs_fifo1_reg_word71_merged;
 wire card_core0_regs_fifo1_reg_word71_mine;
 wire card_core0_regs_fifo1_reg_word71_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word71_shown_wide;
-wire [31:0] card_core0_regs_fifo1_reg_word71_written;
 reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word71__limit31_below;
+wire card_core0_regs_fifo1_reg_word71__limit31_above;
+wire [24:0] card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole;
 reg card_core0_regs_fifo1_reg_word71__store48_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word71__store48_word_value;
 wire [6:0] card_core0_regs_fifo1_reg_word72_honoured;
 wire card_core0_regs_fifo1_reg_word72_out_of_range;
 reg [6:0] card_core0_regs_fifo1_reg_word72_shown;
 reg card_core0_regs_fifo1_reg_word72_clamped;
+wire [6:0] card_core0_regs_fifo1_reg_word72_merged;
 wire card_core0_regs_fifo1_reg_word72_mine;
 wire card_core0_regs_fifo1_reg_word72_mine_write;
 wire [31:0] card_core0_regs_fifo1_reg_word72_shown_wide;
-wire [6:0] card_core0_regs_fifo1_reg_word72_written;
 reg [31:0] card_core0_regs_fifo1_reg_word72_chain_out_data;
 wire card_core0_regs_fifo1_reg_word72_chain_out_clamped;
 reg card_core0_regs_fifo1_reg_word72__store49_word_strobe;
@@ -644,70 +770,103 @@ wire card_core0_regs_fifo1_reg_word73_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word73_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word73_chain_out_data;
 wire card_core0_regs_fifo1_reg_word73_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word74_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word74_honoured;
 reg card_core0_regs_fifo1_reg_word74_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word74_shown;
 reg card_core0_regs_fifo1_reg_word74_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word74_merged;
 wire card_core0_regs_fifo1_reg_word74_mine;
 wire card_core0_regs_fifo1_reg_word74_mine_write;
 wire card_core0_regs_fifo1_reg_word74_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word74_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word74_written;
 reg [31:0] card_core0_regs_fifo1_reg_word74_chain_out_data;
 wire card_core0_regs_fifo1_reg_word74_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word74__limit33_below;
+wire card_core0_regs_fifo1_reg_word74__limit33_above;
+wire [16:0] card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole;
+wire card_core0_regs_fifo1_reg_word75_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word75_honoured;
 reg card_core0_regs_fifo1_reg_word75_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word75_shown;
 reg card_core0_regs_fifo1_reg_word75_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word75_merged;
 wire card_core0_regs_fifo1_reg_word75_mine;
 wire card_core0_regs_fifo1_reg_word75_mine_write;
 wire card_core0_regs_fifo1_reg_word75_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word75_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word75_written;
 reg [31:0] card_core0_regs_fifo1_reg_word75_chain_out_data;
 wire card_core0_regs_fifo1_reg_word75_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word75__limit34_below;
+wire card_core0_regs_fifo1_reg_word75__limit34_above;
+wire [16:0] card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole;
+wire card_core0_regs_fifo1_reg_word76_zero_above;
 reg [15:0] card_core0_regs_fifo1_reg_word76_honoured;
 reg card_core0_regs_fifo1_reg_word76_out_of_range;
 reg [15:0] card_core0_regs_fifo1_reg_word76_shown;
 reg card_core0_regs_fifo1_reg_word76_clamped;
+wire [15:0] card_core0_regs_fifo1_reg_word76_merged;
 wire card_core0_regs_fifo1_reg_word76_mine;
 wire card_core0_regs_fifo1_reg_word76_mine_write;
 wire card_core0_regs_fifo1_reg_word76_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word76_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word76_written;
 reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
 wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word76__limit35_below;
+wire card_core0_regs_fifo1_reg_word76__limit35_above;
+wire [16:0] card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole;
+wire card_core0_regs_fifo1_reg_word77_zero_above;
 reg [22:0] card_core0_regs_fifo1_reg_word77_honoured;
 reg card_core0_regs_fifo1_reg_word77_out_of_range;
 reg [22:0] card_core0_regs_fifo1_reg_word77_shown;
 reg card_core0_regs_fifo1_reg_word77_clamped;
+wire [22:0] card_core0_regs_fifo1_reg_word77_merged;
 wire card_core0_regs_fifo1_reg_word77_mine;
 wire card_core0_regs_fifo1_reg_word77_mine_write;
 wire card_core0_regs_fifo1_reg_word77_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word77_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word77_written;
 reg [31:0] card_core0_regs_fifo1_reg_word77_chain_out_data;
 wire card_core0_regs_fifo1_reg_word77_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word77__limit36_below;
+wire card_core0_regs_fifo1_reg_word77__limit36_above;
+wire [23:0] card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word78_honoured;
 reg card_core0_regs_fifo1_reg_word78_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word78_shown;
+wire card_core0_regs_fifo1_reg_word78_bus_zero;
 reg card_core0_regs_fifo1_reg_word78_clamped;
+wire [7:0] card_core0_regs_fifo1_reg_word78_merged;
 wire card_core0_regs_fifo1_reg_word78_mine;
 wire card_core0_regs_fifo1_reg_word78_mine_write;
+wire [7:0] card_core0_regs_fifo1_reg_word78_set_low;
+wire card_core0_regs_fifo1_reg_word78_set_selected;
+wire card_core0_regs_fifo1_reg_word78_set_zero;
 wire [31:0] card_core0_regs_fifo1_reg_word78_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word78_written;
+reg [7:0] card_core0_regs_fifo1_reg_word78_written;
 reg [31:0] card_core0_regs_fifo1_reg_word78_chain_out_data;
 wire card_core0_regs_fifo1_reg_word78_chain_out_clamped;
+reg card_core0_regs_fifo1_reg_word78__limit_either17_above;
+reg card_core0_regs_fifo1_reg_word78__limit_either17_below;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_bus_above;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_bus_below;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_set_above;
+wire card_core0_regs_fifo1_reg_word78__limit_either17_set_below;
+wire [8:0] card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole;
+wire [8:0] card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole;
+wire card_core0_regs_fifo1_reg_word79_zero_above;
 reg [1:0] card_core0_regs_fifo1_reg_word79_honoured;
 reg card_core0_regs_fifo1_reg_word79_out_of_range;
 reg card_core0_regs_fifo1_reg_word79_clamped;
+wire [1:0] card_core0_regs_fifo1_reg_word79_merged;
 wire card_core0_regs_fifo1_reg_word79_mine;
 wire card_core0_regs_fifo1_reg_word79_mine_write;
 wire card_core0_regs_fifo1_reg_word79_set_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word79_shown_wide;
-reg [31:0] card_core0_regs_fifo1_reg_word79_written;
 reg [31:0] card_core0_regs_fifo1_reg_word79_chain_out_data;
 wire card_core0_regs_fifo1_reg_word79_chain_out_clamped;
+wire card_core0_regs_fifo1_reg_word79__limit37_below;
+wire card_core0_regs_fifo1_reg_word79__limit37_above;
+wire [2:0] card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole;
 reg [6:0] card_core0_regs_fifo1_reg_word80_shown;
 wire card_core0_regs_fifo1_reg_word80_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word80_shown_wide;
@@ -2316,38 +2475,38 @@ always @(posedge clock, negedge reset) begin: pci_slave1_pci_config1_config_regi
                 end
                 'h4: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
-                        pci_slave1_bar0[8-1:0] <= pci_slave1_config_data[8-1:0];
+                        pci_slave1_bar0[8-1:0] <= (pci_slave1_config_data[8-1:0] & 0);
                     end
                     if ((!pci_slave1_config_cbe_n[1])) begin
-                        pci_slave1_bar0[16-1:8] <= pci_slave1_config_data[16-1:8];
+                        pci_slave1_bar0[16-1:8] <= (pci_slave1_config_data[16-1:8] & 255);
                     end
                 end
                 'h5: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
-                        pci_slave1_bar1[8-1:0] <= pci_slave1_config_data[8-1:0];
+                        pci_slave1_bar1[8-1:0] <= (pci_slave1_config_data[8-1:0] & 0);
                     end
                     if ((!pci_slave1_config_cbe_n[1])) begin
-                        pci_slave1_bar1[16-1:8] <= pci_slave1_config_data[16-1:8];
+                        pci_slave1_bar1[16-1:8] <= (pci_slave1_config_data[16-1:8] & 240);
                     end
                     if ((!pci_slave1_config_cbe_n[2])) begin
-                        pci_slave1_bar1[24-1:16] <= pci_slave1_config_data[24-1:16];
+                        pci_slave1_bar1[24-1:16] <= (pci_slave1_config_data[24-1:16] & 255);
                     end
                     if ((!pci_slave1_config_cbe_n[3])) begin
-                        pci_slave1_bar1[32-1:24] <= pci_slave1_config_data[32-1:24];
+                        pci_slave1_bar1[32-1:24] <= (pci_slave1_config_data[32-1:24] & 255);
                     end
                 end
                 'h6: begin
                     if ((!pci_slave1_config_cbe_n[0])) begin
-                        pci_slave1_bar2[8-1:0] <= pci_slave1_config_data[8-1:0];
+                        pci_slave1_bar2[8-1:0] <= (pci_slave1_config_data[8-1:0] & 0);
                     end
                     if ((!pci_slave1_config_cbe_n[1])) begin
-                        pci_slave1_bar2[16-1:8] <= pci_slave1_config_data[16-1:8];
+                        pci_slave1_bar2[16-1:8] <= (pci_slave1_config_data[16-1:8] & 240);
                     end
                     if ((!pci_slave1_config_cbe_n[2])) begin
-                        pci_slave1_bar2[24-1:16] <= pci_slave1_config_data[24-1:16];
+                        pci_slave1_bar2[24-1:16] <= (pci_slave1_config_data[24-1:16] & 255);
                     end
                     if ((!pci_slave1_config_cbe_n[3])) begin
-                        pci_slave1_bar2[32-1:24] <= pci_slave1_config_data[32-1:24];
+                        pci_slave1_bar2[32-1:24] <= (pci_slave1_config_data[32-1:24] & 255);
                     end
                 end
                 'hf: begin
@@ -2538,18 +2697,12 @@ assign card_core0_regs_fifo1_reg_word42_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_written_addr == 4);
 
 
-always @(card_core0_regs_fifo1_reg_word42_shown_wide, card_core0_regs_fifo1_reg_word42_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word42_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word42_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word42_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word42_written = ((card_core0_regs_fifo1_reg_word42_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word42_merged = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word42_honoured = card_core0_regs_fifo1_reg_word42_merged;
 
 
 
@@ -2594,11 +2747,11 @@ assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word43_written = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+assign card_core0_regs_fifo1_reg_word43_merged = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_written[4-1:0];
+assign card_core0_regs_fifo1_reg_word43_honoured = card_core0_regs_fifo1_reg_word43_merged;
 
 
 
@@ -2667,18 +2820,12 @@ assign card_core0_regs_fifo1_reg_word45_shown_wide = {22'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_written_addr == 16);
 
 
-always @(card_core0_regs_fifo1_reg_word45_shown_wide, card_core0_regs_fifo1_reg_word45_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word45_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word45_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word45_written = card_core0_regs_fifo1_set_value[10-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word45_written = ((card_core0_regs_fifo1_reg_word45_shown_wide[10-1:0] & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word45_merged = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_written[10-1:0];
+assign card_core0_regs_fifo1_reg_word45_honoured = card_core0_regs_fifo1_reg_word45_merged;
 
 
 
@@ -2723,11 +2870,11 @@ assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word46_written = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
+assign card_core0_regs_fifo1_reg_word46_merged = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_written[10-1:0];
+assign card_core0_regs_fifo1_reg_word46_honoured = card_core0_regs_fifo1_reg_word46_merged;
 
 
 
@@ -2771,26 +2918,35 @@ assign card_core0_regs_fifo1_reg_word47_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_written_addr == 24);
 
 
-always @(card_core0_regs_fifo1_reg_word47_shown_wide, card_core0_regs_fifo1_reg_word47_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word47_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word47_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word47_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word47_written = ((card_core0_regs_fifo1_reg_word47_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word47_written) begin: card_core0_regs_fifo1_reg_word47__limit32_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word47_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word47_written[32-1:16] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole = {(!card_core0_regs_fifo1_reg_word47_zero_above), card_core0_regs_fifo1_reg_word47_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word47__limit23_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word47__limit23_above = (card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word47__limit23_below, card_core0_regs_fifo1_reg_word47__limit23_above, card_core0_regs_fifo1_reg_word47_merged) begin: card_core0_regs_fifo1_reg_word47__limit23__clamp18_clamp
+    card_core0_regs_fifo1_reg_word47_out_of_range = (card_core0_regs_fifo1_reg_word47__limit23_below || card_core0_regs_fifo1_reg_word47__limit23_above);
+    if (card_core0_regs_fifo1_reg_word47__limit23_below) begin
+        card_core0_regs_fifo1_reg_word47_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word47__limit23_above) begin
         card_core0_regs_fifo1_reg_word47_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_written[16-1:0];
-        card_core0_regs_fifo1_reg_word47_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word47_honoured = card_core0_regs_fifo1_reg_word47_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word47_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -2900,27 +3056,70 @@ assign card_core0_regs_fifo1_reg_word51_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_written_addr == 40);
 
 
-always @(card_core0_regs_fifo1_reg_word51_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word51_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word51_merged = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word51_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 0));
+
+
+always @(card_core0_regs_fifo1_reg_word51_merged, card_core0_regs_fifo1_reg_word51_set_low, card_core0_regs_fifo1_reg_word51_set_selected) begin: card_core0_regs_fifo1_reg_word51_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word51_set_selected) begin
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_reg_word51_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_written = ((card_core0_regs_fifo1_reg_word51_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word51_written = card_core0_regs_fifo1_reg_word51_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit33_clamp_unsigned
-    card_core0_regs_fifo1_reg_word51_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word51_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word51_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word51_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word51_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word51_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole = {(!card_core0_regs_fifo1_reg_word51_set_zero), card_core0_regs_fifo1_reg_word51_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit_either9_set_below = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word51__limit_either9_set_above = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word51__limit_either9__bounds28_whole[16-1:0] > 32768));
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole = {(!card_core0_regs_fifo1_reg_word51_bus_zero), card_core0_regs_fifo1_reg_word51_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word51__limit_either9_bus_below = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word51__limit_either9_bus_above = ((card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word51__limit_either9__bounds29_whole[16-1:0] > 32768));
+
+
+always @(card_core0_regs_fifo1_reg_word51__limit_either9_set_below, card_core0_regs_fifo1_reg_word51_set_selected, card_core0_regs_fifo1_reg_word51__limit_either9_bus_above, card_core0_regs_fifo1_reg_word51__limit_either9_set_above, card_core0_regs_fifo1_reg_word51__limit_either9_bus_below) begin: card_core0_regs_fifo1_reg_word51__limit_either9_choose
+    if (card_core0_regs_fifo1_reg_word51_set_selected) begin
+        card_core0_regs_fifo1_reg_word51__limit_either9_below = card_core0_regs_fifo1_reg_word51__limit_either9_set_below;
+        card_core0_regs_fifo1_reg_word51__limit_either9_above = card_core0_regs_fifo1_reg_word51__limit_either9_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word51__limit_either9_below = card_core0_regs_fifo1_reg_word51__limit_either9_bus_below;
+        card_core0_regs_fifo1_reg_word51__limit_either9_above = card_core0_regs_fifo1_reg_word51__limit_either9_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word51__limit_either9_below, card_core0_regs_fifo1_reg_word51__limit_either9_above, card_core0_regs_fifo1_reg_word51_written) begin: card_core0_regs_fifo1_reg_word51__limit_either9__clamp19_clamp
+    card_core0_regs_fifo1_reg_word51_out_of_range = (card_core0_regs_fifo1_reg_word51__limit_either9_below || card_core0_regs_fifo1_reg_word51__limit_either9_above);
+    if (card_core0_regs_fifo1_reg_word51__limit_either9_below) begin
         card_core0_regs_fifo1_reg_word51_honoured = 1;
     end
-    else if (((card_core0_regs_fifo1_reg_word51_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word51_written[16-1:0] > 32768))) begin
+    else if (card_core0_regs_fifo1_reg_word51__limit_either9_above) begin
         card_core0_regs_fifo1_reg_word51_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written[16-1:0];
-        card_core0_regs_fifo1_reg_word51_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word51_honoured = card_core0_regs_fifo1_reg_word51_written;
     end
 end
 
@@ -2966,27 +3165,70 @@ assign card_core0_regs_fifo1_reg_word52_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_written_addr == 44);
 
 
-always @(card_core0_regs_fifo1_reg_word52_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word52_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1))) begin
-        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word52_merged = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word52_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 1));
+
+
+always @(card_core0_regs_fifo1_reg_word52_merged, card_core0_regs_fifo1_reg_word52_set_low, card_core0_regs_fifo1_reg_word52_set_selected) begin: card_core0_regs_fifo1_reg_word52_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word52_set_selected) begin
+        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_reg_word52_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word52_written = ((card_core0_regs_fifo1_reg_word52_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word52_written = card_core0_regs_fifo1_reg_word52_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit34_clamp_unsigned
-    card_core0_regs_fifo1_reg_word52_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word52_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word52_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word52_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word52_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word52_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole = {(!card_core0_regs_fifo1_reg_word52_set_zero), card_core0_regs_fifo1_reg_word52_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit_either10_set_below = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word52__limit_either10_set_above = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word52__limit_either10__bounds30_whole[16-1:0] > 32768));
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole = {(!card_core0_regs_fifo1_reg_word52_bus_zero), card_core0_regs_fifo1_reg_word52_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word52__limit_either10_bus_below = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word52__limit_either10_bus_above = ((card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[17-1:16] != 0) || (card_core0_regs_fifo1_reg_word52__limit_either10__bounds31_whole[16-1:0] > 32768));
+
+
+always @(card_core0_regs_fifo1_reg_word52__limit_either10_set_below, card_core0_regs_fifo1_reg_word52_set_selected, card_core0_regs_fifo1_reg_word52__limit_either10_bus_above, card_core0_regs_fifo1_reg_word52__limit_either10_set_above, card_core0_regs_fifo1_reg_word52__limit_either10_bus_below) begin: card_core0_regs_fifo1_reg_word52__limit_either10_choose
+    if (card_core0_regs_fifo1_reg_word52_set_selected) begin
+        card_core0_regs_fifo1_reg_word52__limit_either10_below = card_core0_regs_fifo1_reg_word52__limit_either10_set_below;
+        card_core0_regs_fifo1_reg_word52__limit_either10_above = card_core0_regs_fifo1_reg_word52__limit_either10_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word52__limit_either10_below = card_core0_regs_fifo1_reg_word52__limit_either10_bus_below;
+        card_core0_regs_fifo1_reg_word52__limit_either10_above = card_core0_regs_fifo1_reg_word52__limit_either10_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word52__limit_either10_below, card_core0_regs_fifo1_reg_word52__limit_either10_above, card_core0_regs_fifo1_reg_word52_written) begin: card_core0_regs_fifo1_reg_word52__limit_either10__clamp20_clamp
+    card_core0_regs_fifo1_reg_word52_out_of_range = (card_core0_regs_fifo1_reg_word52__limit_either10_below || card_core0_regs_fifo1_reg_word52__limit_either10_above);
+    if (card_core0_regs_fifo1_reg_word52__limit_either10_below) begin
         card_core0_regs_fifo1_reg_word52_honoured = 1;
     end
-    else if (((card_core0_regs_fifo1_reg_word52_written[32-1:16] != 0) || (card_core0_regs_fifo1_reg_word52_written[16-1:0] > 32768))) begin
+    else if (card_core0_regs_fifo1_reg_word52__limit_either10_above) begin
         card_core0_regs_fifo1_reg_word52_honoured = 32768;
     end
     else begin
-        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written[16-1:0];
-        card_core0_regs_fifo1_reg_word52_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word52_honoured = card_core0_regs_fifo1_reg_word52_written;
     end
 end
 
@@ -3032,24 +3274,70 @@ assign card_core0_regs_fifo1_reg_word53_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_written_addr == 48);
 
 
-always @(card_core0_regs_fifo1_reg_word53_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word53_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2))) begin
-        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word53_merged = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word53_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 2));
+
+
+always @(card_core0_regs_fifo1_reg_word53_merged, card_core0_regs_fifo1_reg_word53_set_low, card_core0_regs_fifo1_reg_word53_set_selected) begin: card_core0_regs_fifo1_reg_word53_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word53_set_selected) begin
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_reg_word53_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_written = ((card_core0_regs_fifo1_reg_word53_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word53_written = card_core0_regs_fifo1_reg_word53_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit35_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word53_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word53_written[32-1:16] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word53_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word53_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word53_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole = {(!card_core0_regs_fifo1_reg_word53_set_zero), card_core0_regs_fifo1_reg_word53_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit_either11_set_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word53__limit_either11_set_above = (card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole[17-1:16] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole = {(!card_core0_regs_fifo1_reg_word53_bus_zero), card_core0_regs_fifo1_reg_word53_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_above = (card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word53__limit_either11_set_below, card_core0_regs_fifo1_reg_word53_set_selected, card_core0_regs_fifo1_reg_word53__limit_either11_bus_above, card_core0_regs_fifo1_reg_word53__limit_either11_set_above, card_core0_regs_fifo1_reg_word53__limit_either11_bus_below) begin: card_core0_regs_fifo1_reg_word53__limit_either11_choose
+    if (card_core0_regs_fifo1_reg_word53_set_selected) begin
+        card_core0_regs_fifo1_reg_word53__limit_either11_below = card_core0_regs_fifo1_reg_word53__limit_either11_set_below;
+        card_core0_regs_fifo1_reg_word53__limit_either11_above = card_core0_regs_fifo1_reg_word53__limit_either11_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word53__limit_either11_below = card_core0_regs_fifo1_reg_word53__limit_either11_bus_below;
+        card_core0_regs_fifo1_reg_word53__limit_either11_above = card_core0_regs_fifo1_reg_word53__limit_either11_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word53__limit_either11_below, card_core0_regs_fifo1_reg_word53__limit_either11_above, card_core0_regs_fifo1_reg_word53_written) begin: card_core0_regs_fifo1_reg_word53__limit_either11__clamp21_clamp
+    card_core0_regs_fifo1_reg_word53_out_of_range = (card_core0_regs_fifo1_reg_word53__limit_either11_below || card_core0_regs_fifo1_reg_word53__limit_either11_above);
+    if (card_core0_regs_fifo1_reg_word53__limit_either11_below) begin
+        card_core0_regs_fifo1_reg_word53_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word53__limit_either11_above) begin
         card_core0_regs_fifo1_reg_word53_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written[16-1:0];
-        card_core0_regs_fifo1_reg_word53_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word53_honoured = card_core0_regs_fifo1_reg_word53_written;
     end
 end
 
@@ -3095,27 +3383,70 @@ assign card_core0_regs_fifo1_reg_word54_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_written_addr == 52);
 
 
-always @(card_core0_regs_fifo1_reg_word54_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word54_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3))) begin
-        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word54_merged = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word54_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 3));
+
+
+always @(card_core0_regs_fifo1_reg_word54_merged, card_core0_regs_fifo1_reg_word54_set_low, card_core0_regs_fifo1_reg_word54_set_selected) begin: card_core0_regs_fifo1_reg_word54_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word54_set_selected) begin
+        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_reg_word54_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_written = ((card_core0_regs_fifo1_reg_word54_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word54_written = card_core0_regs_fifo1_reg_word54_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit36_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word54_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word54_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word54_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word54_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word54_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word54_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole = {(!card_core0_regs_fifo1_reg_word54_set_zero), card_core0_regs_fifo1_reg_word54_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit_either12_set_below = ((card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word54__limit_either12_set_above = (card_core0_regs_fifo1_reg_word54__limit_either12__bounds34_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole = {(!card_core0_regs_fifo1_reg_word54_bus_zero), card_core0_regs_fifo1_reg_word54_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word54__limit_either12_bus_below = ((card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word54__limit_either12_bus_above = (card_core0_regs_fifo1_reg_word54__limit_either12__bounds35_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word54__limit_either12_set_below, card_core0_regs_fifo1_reg_word54_set_selected, card_core0_regs_fifo1_reg_word54__limit_either12_bus_above, card_core0_regs_fifo1_reg_word54__limit_either12_set_above, card_core0_regs_fifo1_reg_word54__limit_either12_bus_below) begin: card_core0_regs_fifo1_reg_word54__limit_either12_choose
+    if (card_core0_regs_fifo1_reg_word54_set_selected) begin
+        card_core0_regs_fifo1_reg_word54__limit_either12_below = card_core0_regs_fifo1_reg_word54__limit_either12_set_below;
+        card_core0_regs_fifo1_reg_word54__limit_either12_above = card_core0_regs_fifo1_reg_word54__limit_either12_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word54__limit_either12_below = card_core0_regs_fifo1_reg_word54__limit_either12_bus_below;
+        card_core0_regs_fifo1_reg_word54__limit_either12_above = card_core0_regs_fifo1_reg_word54__limit_either12_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word54__limit_either12_below, card_core0_regs_fifo1_reg_word54__limit_either12_above, card_core0_regs_fifo1_reg_word54_written) begin: card_core0_regs_fifo1_reg_word54__limit_either12__clamp22_clamp
+    card_core0_regs_fifo1_reg_word54_out_of_range = (card_core0_regs_fifo1_reg_word54__limit_either12_below || card_core0_regs_fifo1_reg_word54__limit_either12_above);
+    if (card_core0_regs_fifo1_reg_word54__limit_either12_below) begin
         card_core0_regs_fifo1_reg_word54_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word54_written[32-1:8] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word54__limit_either12_above) begin
         card_core0_regs_fifo1_reg_word54_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written[8-1:0];
-        card_core0_regs_fifo1_reg_word54_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word54_honoured = card_core0_regs_fifo1_reg_word54_written;
     end
 end
 
@@ -3161,27 +3492,70 @@ assign card_core0_regs_fifo1_reg_word55_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_written_addr == 56);
 
 
-always @(card_core0_regs_fifo1_reg_word55_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word55_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4))) begin
-        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word55_merged = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word55_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 4));
+
+
+always @(card_core0_regs_fifo1_reg_word55_merged, card_core0_regs_fifo1_reg_word55_set_low, card_core0_regs_fifo1_reg_word55_set_selected) begin: card_core0_regs_fifo1_reg_word55_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word55_set_selected) begin
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_reg_word55_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_written = ((card_core0_regs_fifo1_reg_word55_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word55_written = card_core0_regs_fifo1_reg_word55_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit37_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word55_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word55_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word55_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word55_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word55_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word55_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole = {(!card_core0_regs_fifo1_reg_word55_set_zero), card_core0_regs_fifo1_reg_word55_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit_either13_set_below = ((card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word55__limit_either13_set_above = (card_core0_regs_fifo1_reg_word55__limit_either13__bounds36_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole = {(!card_core0_regs_fifo1_reg_word55_bus_zero), card_core0_regs_fifo1_reg_word55_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word55__limit_either13_bus_below = ((card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word55__limit_either13_bus_above = (card_core0_regs_fifo1_reg_word55__limit_either13__bounds37_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word55__limit_either13_set_below, card_core0_regs_fifo1_reg_word55_set_selected, card_core0_regs_fifo1_reg_word55__limit_either13_bus_above, card_core0_regs_fifo1_reg_word55__limit_either13_set_above, card_core0_regs_fifo1_reg_word55__limit_either13_bus_below) begin: card_core0_regs_fifo1_reg_word55__limit_either13_choose
+    if (card_core0_regs_fifo1_reg_word55_set_selected) begin
+        card_core0_regs_fifo1_reg_word55__limit_either13_below = card_core0_regs_fifo1_reg_word55__limit_either13_set_below;
+        card_core0_regs_fifo1_reg_word55__limit_either13_above = card_core0_regs_fifo1_reg_word55__limit_either13_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word55__limit_either13_below = card_core0_regs_fifo1_reg_word55__limit_either13_bus_below;
+        card_core0_regs_fifo1_reg_word55__limit_either13_above = card_core0_regs_fifo1_reg_word55__limit_either13_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word55__limit_either13_below, card_core0_regs_fifo1_reg_word55__limit_either13_above, card_core0_regs_fifo1_reg_word55_written) begin: card_core0_regs_fifo1_reg_word55__limit_either13__clamp23_clamp
+    card_core0_regs_fifo1_reg_word55_out_of_range = (card_core0_regs_fifo1_reg_word55__limit_either13_below || card_core0_regs_fifo1_reg_word55__limit_either13_above);
+    if (card_core0_regs_fifo1_reg_word55__limit_either13_below) begin
         card_core0_regs_fifo1_reg_word55_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word55_written[32-1:8] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word55__limit_either13_above) begin
         card_core0_regs_fifo1_reg_word55_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written[8-1:0];
-        card_core0_regs_fifo1_reg_word55_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word55_honoured = card_core0_regs_fifo1_reg_word55_written;
     end
 end
 
@@ -3227,27 +3601,70 @@ assign card_core0_regs_fifo1_reg_word56_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_written_addr == 60);
 
 
-always @(card_core0_regs_fifo1_reg_word56_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word56_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5))) begin
-        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word56_merged = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word56_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 5));
+
+
+always @(card_core0_regs_fifo1_reg_word56_merged, card_core0_regs_fifo1_reg_word56_set_low, card_core0_regs_fifo1_reg_word56_set_selected) begin: card_core0_regs_fifo1_reg_word56_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word56_set_selected) begin
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_reg_word56_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_written = ((card_core0_regs_fifo1_reg_word56_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word56_written = card_core0_regs_fifo1_reg_word56_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit38_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word56_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word56_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word56_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word56_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word56_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word56_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole = {(!card_core0_regs_fifo1_reg_word56_set_zero), card_core0_regs_fifo1_reg_word56_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit_either14_set_below = ((card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word56__limit_either14_set_above = (card_core0_regs_fifo1_reg_word56__limit_either14__bounds38_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole = {(!card_core0_regs_fifo1_reg_word56_bus_zero), card_core0_regs_fifo1_reg_word56_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word56__limit_either14_bus_below = ((card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word56__limit_either14_bus_above = (card_core0_regs_fifo1_reg_word56__limit_either14__bounds39_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word56__limit_either14_set_below, card_core0_regs_fifo1_reg_word56_set_selected, card_core0_regs_fifo1_reg_word56__limit_either14_bus_above, card_core0_regs_fifo1_reg_word56__limit_either14_set_above, card_core0_regs_fifo1_reg_word56__limit_either14_bus_below) begin: card_core0_regs_fifo1_reg_word56__limit_either14_choose
+    if (card_core0_regs_fifo1_reg_word56_set_selected) begin
+        card_core0_regs_fifo1_reg_word56__limit_either14_below = card_core0_regs_fifo1_reg_word56__limit_either14_set_below;
+        card_core0_regs_fifo1_reg_word56__limit_either14_above = card_core0_regs_fifo1_reg_word56__limit_either14_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word56__limit_either14_below = card_core0_regs_fifo1_reg_word56__limit_either14_bus_below;
+        card_core0_regs_fifo1_reg_word56__limit_either14_above = card_core0_regs_fifo1_reg_word56__limit_either14_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word56__limit_either14_below, card_core0_regs_fifo1_reg_word56__limit_either14_above, card_core0_regs_fifo1_reg_word56_written) begin: card_core0_regs_fifo1_reg_word56__limit_either14__clamp24_clamp
+    card_core0_regs_fifo1_reg_word56_out_of_range = (card_core0_regs_fifo1_reg_word56__limit_either14_below || card_core0_regs_fifo1_reg_word56__limit_either14_above);
+    if (card_core0_regs_fifo1_reg_word56__limit_either14_below) begin
         card_core0_regs_fifo1_reg_word56_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word56_written[32-1:8] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word56__limit_either14_above) begin
         card_core0_regs_fifo1_reg_word56_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written[8-1:0];
-        card_core0_regs_fifo1_reg_word56_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word56_honoured = card_core0_regs_fifo1_reg_word56_written;
     end
 end
 
@@ -3293,18 +3710,12 @@ assign card_core0_regs_fifo1_reg_word57_shown_wide = {26'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_written_addr == 64);
 
 
-always @(card_core0_regs_fifo1_reg_word57_shown_wide, card_core0_regs_fifo1_reg_word57_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word57_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word57_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word57_written = card_core0_regs_fifo1_set_value[6-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word57_written = ((card_core0_regs_fifo1_reg_word57_shown_wide[6-1:0] & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word57_merged = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_written[6-1:0];
+assign card_core0_regs_fifo1_reg_word57_honoured = card_core0_regs_fifo1_reg_word57_merged;
 
 
 
@@ -3348,27 +3759,70 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
 
 
-always @(card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word58_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6))) begin
-        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word58_merged = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word58_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 6));
+
+
+always @(card_core0_regs_fifo1_reg_word58_merged, card_core0_regs_fifo1_reg_word58_set_low, card_core0_regs_fifo1_reg_word58_set_selected) begin: card_core0_regs_fifo1_reg_word58_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word58_set_selected) begin
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_reg_word58_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word58_written = ((card_core0_regs_fifo1_reg_word58_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word58_written = card_core0_regs_fifo1_reg_word58_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit40_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word58_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word58_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word58_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word58_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word58_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word58_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole = {(!card_core0_regs_fifo1_reg_word58_set_zero), card_core0_regs_fifo1_reg_word58_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit_either15_set_below = ((card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word58__limit_either15_set_above = (card_core0_regs_fifo1_reg_word58__limit_either15__bounds40_whole[17-1:16] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole = {(!card_core0_regs_fifo1_reg_word58_bus_zero), card_core0_regs_fifo1_reg_word58_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word58__limit_either15_bus_below = ((card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word58__limit_either15_bus_above = (card_core0_regs_fifo1_reg_word58__limit_either15__bounds41_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word58__limit_either15_set_below, card_core0_regs_fifo1_reg_word58_set_selected, card_core0_regs_fifo1_reg_word58__limit_either15_bus_above, card_core0_regs_fifo1_reg_word58__limit_either15_set_above, card_core0_regs_fifo1_reg_word58__limit_either15_bus_below) begin: card_core0_regs_fifo1_reg_word58__limit_either15_choose
+    if (card_core0_regs_fifo1_reg_word58_set_selected) begin
+        card_core0_regs_fifo1_reg_word58__limit_either15_below = card_core0_regs_fifo1_reg_word58__limit_either15_set_below;
+        card_core0_regs_fifo1_reg_word58__limit_either15_above = card_core0_regs_fifo1_reg_word58__limit_either15_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word58__limit_either15_below = card_core0_regs_fifo1_reg_word58__limit_either15_bus_below;
+        card_core0_regs_fifo1_reg_word58__limit_either15_above = card_core0_regs_fifo1_reg_word58__limit_either15_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word58__limit_either15_below, card_core0_regs_fifo1_reg_word58__limit_either15_above, card_core0_regs_fifo1_reg_word58_written) begin: card_core0_regs_fifo1_reg_word58__limit_either15__clamp25_clamp
+    card_core0_regs_fifo1_reg_word58_out_of_range = (card_core0_regs_fifo1_reg_word58__limit_either15_below || card_core0_regs_fifo1_reg_word58__limit_either15_above);
+    if (card_core0_regs_fifo1_reg_word58__limit_either15_below) begin
         card_core0_regs_fifo1_reg_word58_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word58_written[32-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word58__limit_either15_above) begin
         card_core0_regs_fifo1_reg_word58_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written[16-1:0];
-        card_core0_regs_fifo1_reg_word58_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word58_honoured = card_core0_regs_fifo1_reg_word58_written;
     end
 end
 
@@ -3414,27 +3868,70 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
 
 
-always @(card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word59_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7))) begin
-        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word59_merged = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word59_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 7));
+
+
+always @(card_core0_regs_fifo1_reg_word59_merged, card_core0_regs_fifo1_reg_word59_set_low, card_core0_regs_fifo1_reg_word59_set_selected) begin: card_core0_regs_fifo1_reg_word59_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word59_set_selected) begin
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_reg_word59_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word59_written = ((card_core0_regs_fifo1_reg_word59_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word59_written = card_core0_regs_fifo1_reg_word59_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit41_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word59_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word59_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word59_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word59_set_low = card_core0_regs_fifo1_set_value[16-1:0];
+assign card_core0_regs_fifo1_reg_word59_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
+assign card_core0_regs_fifo1_reg_word59_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole = {(!card_core0_regs_fifo1_reg_word59_set_zero), card_core0_regs_fifo1_reg_word59_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit_either16_set_below = ((card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word59__limit_either16_set_above = (card_core0_regs_fifo1_reg_word59__limit_either16__bounds42_whole[17-1:16] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole = {(!card_core0_regs_fifo1_reg_word59_bus_zero), card_core0_regs_fifo1_reg_word59_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word59__limit_either16_bus_below = ((card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word59__limit_either16_bus_above = (card_core0_regs_fifo1_reg_word59__limit_either16__bounds43_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word59__limit_either16_set_below, card_core0_regs_fifo1_reg_word59_set_selected, card_core0_regs_fifo1_reg_word59__limit_either16_bus_above, card_core0_regs_fifo1_reg_word59__limit_either16_set_above, card_core0_regs_fifo1_reg_word59__limit_either16_bus_below) begin: card_core0_regs_fifo1_reg_word59__limit_either16_choose
+    if (card_core0_regs_fifo1_reg_word59_set_selected) begin
+        card_core0_regs_fifo1_reg_word59__limit_either16_below = card_core0_regs_fifo1_reg_word59__limit_either16_set_below;
+        card_core0_regs_fifo1_reg_word59__limit_either16_above = card_core0_regs_fifo1_reg_word59__limit_either16_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word59__limit_either16_below = card_core0_regs_fifo1_reg_word59__limit_either16_bus_below;
+        card_core0_regs_fifo1_reg_word59__limit_either16_above = card_core0_regs_fifo1_reg_word59__limit_either16_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word59__limit_either16_below, card_core0_regs_fifo1_reg_word59__limit_either16_above, card_core0_regs_fifo1_reg_word59_written) begin: card_core0_regs_fifo1_reg_word59__limit_either16__clamp26_clamp
+    card_core0_regs_fifo1_reg_word59_out_of_range = (card_core0_regs_fifo1_reg_word59__limit_either16_below || card_core0_regs_fifo1_reg_word59__limit_either16_above);
+    if (card_core0_regs_fifo1_reg_word59__limit_either16_below) begin
         card_core0_regs_fifo1_reg_word59_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word59_written[32-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word59__limit_either16_above) begin
         card_core0_regs_fifo1_reg_word59_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written[16-1:0];
-        card_core0_regs_fifo1_reg_word59_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word59_honoured = card_core0_regs_fifo1_reg_word59_written;
     end
 end
 
@@ -3481,15 +3978,15 @@ assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word60_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word60_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_reg_word60__limit42_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word60_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word60_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_written[24-1:0];
+always @(card_core0_regs_fifo1_reg_word60_zero_above, card_core0_regs_fifo1_reg_word60_sign, card_core0_regs_fifo1_reg_word60_ones_above, card_core0_regs_fifo1_reg_word60_merged) begin: card_core0_regs_fifo1_reg_word60__limit25_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word60_zero_above && (!card_core0_regs_fifo1_reg_word60_merged[(24 - 1)])) || (card_core0_regs_fifo1_reg_word60_ones_above && card_core0_regs_fifo1_reg_word60_merged[(24 - 1)]))) begin
+        card_core0_regs_fifo1_reg_word60_honoured = card_core0_regs_fifo1_reg_word60_merged;
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b0;
     end
-    else if (card_core0_regs_fifo1_reg_word60_written[31]) begin
+    else if (card_core0_regs_fifo1_reg_word60_sign) begin
         card_core0_regs_fifo1_reg_word60_honoured = 8388608;
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
     end
@@ -3498,6 +3995,12 @@ always @(card_core0_regs_fifo1_reg_word60_written) begin: card_core0_regs_fifo1_
         card_core0_regs_fifo1_reg_word60_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word60_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word60_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
+assign card_core0_regs_fifo1_reg_word60_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
 
 
 
@@ -3545,15 +4048,15 @@ assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word61_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word61_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_reg_word61__limit43_clamp_signed
-    if (((card_core0_regs_fifo1_reg_word61_written[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_reg_word61_written[32-1:(24 - 1)] == 511))) begin
-        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_written[24-1:0];
+always @(card_core0_regs_fifo1_reg_word61_zero_above, card_core0_regs_fifo1_reg_word61_sign, card_core0_regs_fifo1_reg_word61_ones_above, card_core0_regs_fifo1_reg_word61_merged) begin: card_core0_regs_fifo1_reg_word61__limit26_clamp_signed
+    if (((card_core0_regs_fifo1_reg_word61_zero_above && (!card_core0_regs_fifo1_reg_word61_merged[(24 - 1)])) || (card_core0_regs_fifo1_reg_word61_ones_above && card_core0_regs_fifo1_reg_word61_merged[(24 - 1)]))) begin
+        card_core0_regs_fifo1_reg_word61_honoured = card_core0_regs_fifo1_reg_word61_merged;
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b0;
     end
-    else if (card_core0_regs_fifo1_reg_word61_written[31]) begin
+    else if (card_core0_regs_fifo1_reg_word61_sign) begin
         card_core0_regs_fifo1_reg_word61_honoured = 8388608;
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b1;
     end
@@ -3562,6 +4065,12 @@ always @(card_core0_regs_fifo1_reg_word61_written) begin: card_core0_regs_fifo1_
         card_core0_regs_fifo1_reg_word61_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word61_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word61_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
+assign card_core0_regs_fifo1_reg_word61_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
 
 
 
@@ -3674,18 +4183,12 @@ assign card_core0_regs_fifo1_reg_word65_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_written_addr == 96);
 
 
-always @(card_core0_regs_fifo1_reg_word65_shown_wide, card_core0_regs_fifo1_reg_word65_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word65_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word65_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word65_written = card_core0_regs_fifo1_set_value[2-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word65_written = ((card_core0_regs_fifo1_reg_word65_shown_wide[2-1:0] & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word65_merged = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_written[2-1:0];
+assign card_core0_regs_fifo1_reg_word65_honoured = card_core0_regs_fifo1_reg_word65_merged;
 
 
 
@@ -3776,18 +4279,12 @@ assign card_core0_regs_fifo1_reg_word68_shown_wide = {25'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_written_addr == 108);
 
 
-always @(card_core0_regs_fifo1_reg_word68_shown_wide, card_core0_regs_fifo1_reg_word68_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word68_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word68_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word68_written = card_core0_regs_fifo1_set_value[7-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word68_written = ((card_core0_regs_fifo1_reg_word68_shown_wide[7-1:0] & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word68_merged = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
 
 
 
-assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_written[7-1:0];
+assign card_core0_regs_fifo1_reg_word68_honoured = card_core0_regs_fifo1_reg_word68_merged;
 
 
 
@@ -3831,29 +4328,35 @@ assign card_core0_regs_fifo1_reg_word69_shown_wide = {28'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_written_addr == 112);
 
 
-always @(card_core0_regs_fifo1_reg_word69_shown_wide, card_core0_regs_fifo1_reg_word69_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word69_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word69_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word69_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word69_written = ((card_core0_regs_fifo1_reg_word69_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word69_merged = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word69_written) begin: card_core0_regs_fifo1_reg_word69__limit46_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word69_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word69_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word69_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole = {(!card_core0_regs_fifo1_reg_word69_zero_above), card_core0_regs_fifo1_reg_word69_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word69__limit29_below = ((card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole[5-1:1] == 0) && (card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word69__limit29_above = (card_core0_regs_fifo1_reg_word69__limit29__bounds44_whole[5-1:4] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word69__limit29_below, card_core0_regs_fifo1_reg_word69__limit29_above, card_core0_regs_fifo1_reg_word69_merged) begin: card_core0_regs_fifo1_reg_word69__limit29__clamp27_clamp
+    card_core0_regs_fifo1_reg_word69_out_of_range = (card_core0_regs_fifo1_reg_word69__limit29_below || card_core0_regs_fifo1_reg_word69__limit29_above);
+    if (card_core0_regs_fifo1_reg_word69__limit29_below) begin
         card_core0_regs_fifo1_reg_word69_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word69_written[32-1:4] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word69__limit29_above) begin
         card_core0_regs_fifo1_reg_word69_honoured = 15;
     end
     else begin
-        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_written[4-1:0];
-        card_core0_regs_fifo1_reg_word69_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word69_honoured = card_core0_regs_fifo1_reg_word69_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word69_zero_above = ((card_core0_regs_fifo1_written_data[32-1:4] & card_core0_regs_fifo1_written_mask[32-1:4]) == 0);
 
 
 
@@ -3897,29 +4400,35 @@ assign card_core0_regs_fifo1_reg_word70_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_written_addr == 116);
 
 
-always @(card_core0_regs_fifo1_reg_word70_shown_wide, card_core0_regs_fifo1_reg_word70_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word70_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word70_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word70_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word70_written = ((card_core0_regs_fifo1_reg_word70_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word70_merged = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word70_written) begin: card_core0_regs_fifo1_reg_word70__limit47_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word70_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word70_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word70_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole = {(!card_core0_regs_fifo1_reg_word70_zero_above), card_core0_regs_fifo1_reg_word70_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word70__limit30_below = ((card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word70__limit30_above = (card_core0_regs_fifo1_reg_word70__limit30__bounds45_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word70__limit30_below, card_core0_regs_fifo1_reg_word70__limit30_above, card_core0_regs_fifo1_reg_word70_merged) begin: card_core0_regs_fifo1_reg_word70__limit30__clamp28_clamp
+    card_core0_regs_fifo1_reg_word70_out_of_range = (card_core0_regs_fifo1_reg_word70__limit30_below || card_core0_regs_fifo1_reg_word70__limit30_above);
+    if (card_core0_regs_fifo1_reg_word70__limit30_below) begin
         card_core0_regs_fifo1_reg_word70_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word70_written[32-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word70__limit30_above) begin
         card_core0_regs_fifo1_reg_word70_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_written[16-1:0];
-        card_core0_regs_fifo1_reg_word70_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word70_honoured = card_core0_regs_fifo1_reg_word70_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word70_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -3964,19 +4473,34 @@ assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word71_written = (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]);
+assign card_core0_regs_fifo1_reg_word71_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
 
 
-always @(card_core0_regs_fifo1_reg_word71_written) begin: card_core0_regs_fifo1_reg_word71__limit48_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word71_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word71_written[32-1:24] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole = {(!card_core0_regs_fifo1_reg_word71_zero_above), card_core0_regs_fifo1_reg_word71_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word71__limit31_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word71__limit31_above = (card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole[25-1:24] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word71__limit31_below, card_core0_regs_fifo1_reg_word71__limit31_above, card_core0_regs_fifo1_reg_word71_merged) begin: card_core0_regs_fifo1_reg_word71__limit31__clamp29_clamp
+    card_core0_regs_fifo1_reg_word71_out_of_range = (card_core0_regs_fifo1_reg_word71__limit31_below || card_core0_regs_fifo1_reg_word71__limit31_above);
+    if (card_core0_regs_fifo1_reg_word71__limit31_below) begin
+        card_core0_regs_fifo1_reg_word71_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word71__limit31_above) begin
         card_core0_regs_fifo1_reg_word71_honoured = 16777215;
     end
     else begin
-        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_written[24-1:0];
-        card_core0_regs_fifo1_reg_word71_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word71_honoured = card_core0_regs_fifo1_reg_word71_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word71_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
 
 
 
@@ -4024,11 +4548,11 @@ assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word72_written = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
+assign card_core0_regs_fifo1_reg_word72_merged = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
 
 
 
-assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_written[7-1:0];
+assign card_core0_regs_fifo1_reg_word72_honoured = card_core0_regs_fifo1_reg_word72_merged;
 
 
 
@@ -4097,29 +4621,35 @@ assign card_core0_regs_fifo1_reg_word74_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_written_addr == 132);
 
 
-always @(card_core0_regs_fifo1_reg_word74_shown_wide, card_core0_regs_fifo1_reg_word74_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word74_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word74_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word74_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word74_written = ((card_core0_regs_fifo1_reg_word74_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word74_merged = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word74_written) begin: card_core0_regs_fifo1_reg_word74__limit50_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word74_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word74_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word74_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole = {(!card_core0_regs_fifo1_reg_word74_zero_above), card_core0_regs_fifo1_reg_word74_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word74__limit33_below = ((card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word74__limit33_above = (card_core0_regs_fifo1_reg_word74__limit33__bounds47_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word74__limit33_below, card_core0_regs_fifo1_reg_word74__limit33_above, card_core0_regs_fifo1_reg_word74_merged) begin: card_core0_regs_fifo1_reg_word74__limit33__clamp30_clamp
+    card_core0_regs_fifo1_reg_word74_out_of_range = (card_core0_regs_fifo1_reg_word74__limit33_below || card_core0_regs_fifo1_reg_word74__limit33_above);
+    if (card_core0_regs_fifo1_reg_word74__limit33_below) begin
         card_core0_regs_fifo1_reg_word74_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word74_written[32-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word74__limit33_above) begin
         card_core0_regs_fifo1_reg_word74_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_written[16-1:0];
-        card_core0_regs_fifo1_reg_word74_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word74_honoured = card_core0_regs_fifo1_reg_word74_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word74_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4163,29 +4693,35 @@ assign card_core0_regs_fifo1_reg_word75_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_written_addr == 136);
 
 
-always @(card_core0_regs_fifo1_reg_word75_shown_wide, card_core0_regs_fifo1_reg_word75_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word75_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word75_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word75_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word75_written = ((card_core0_regs_fifo1_reg_word75_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word75_merged = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word75_written) begin: card_core0_regs_fifo1_reg_word75__limit51_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word75_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word75_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word75_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole = {(!card_core0_regs_fifo1_reg_word75_zero_above), card_core0_regs_fifo1_reg_word75_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word75__limit34_below = ((card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole[17-1:1] == 0) && (card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word75__limit34_above = (card_core0_regs_fifo1_reg_word75__limit34__bounds48_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word75__limit34_below, card_core0_regs_fifo1_reg_word75__limit34_above, card_core0_regs_fifo1_reg_word75_merged) begin: card_core0_regs_fifo1_reg_word75__limit34__clamp31_clamp
+    card_core0_regs_fifo1_reg_word75_out_of_range = (card_core0_regs_fifo1_reg_word75__limit34_below || card_core0_regs_fifo1_reg_word75__limit34_above);
+    if (card_core0_regs_fifo1_reg_word75__limit34_below) begin
         card_core0_regs_fifo1_reg_word75_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word75_written[32-1:16] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word75__limit34_above) begin
         card_core0_regs_fifo1_reg_word75_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_written[16-1:0];
-        card_core0_regs_fifo1_reg_word75_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word75_honoured = card_core0_regs_fifo1_reg_word75_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word75_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4229,26 +4765,35 @@ assign card_core0_regs_fifo1_reg_word76_shown_wide = {16'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_written_addr == 140);
 
 
-always @(card_core0_regs_fifo1_reg_word76_shown_wide, card_core0_regs_fifo1_reg_word76_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word76_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word76_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word76_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word76_written = ((card_core0_regs_fifo1_reg_word76_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word76_written) begin: card_core0_regs_fifo1_reg_word76__limit52_clamp_above_power_of_two
-    card_core0_regs_fifo1_reg_word76_out_of_range = 1'b1;
-    if ((card_core0_regs_fifo1_reg_word76_written[32-1:16] != 0)) begin
+
+assign card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole = {(!card_core0_regs_fifo1_reg_word76_zero_above), card_core0_regs_fifo1_reg_word76_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word76__limit35_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word76__limit35_above = (card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole[17-1:16] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word76__limit35_below, card_core0_regs_fifo1_reg_word76__limit35_above, card_core0_regs_fifo1_reg_word76_merged) begin: card_core0_regs_fifo1_reg_word76__limit35__clamp32_clamp
+    card_core0_regs_fifo1_reg_word76_out_of_range = (card_core0_regs_fifo1_reg_word76__limit35_below || card_core0_regs_fifo1_reg_word76__limit35_above);
+    if (card_core0_regs_fifo1_reg_word76__limit35_below) begin
+        card_core0_regs_fifo1_reg_word76_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word76__limit35_above) begin
         card_core0_regs_fifo1_reg_word76_honoured = 65535;
     end
     else begin
-        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_written[16-1:0];
-        card_core0_regs_fifo1_reg_word76_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word76_honoured = card_core0_regs_fifo1_reg_word76_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word76_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
 
 
 
@@ -4292,29 +4837,35 @@ assign card_core0_regs_fifo1_reg_word77_shown_wide = {9'h0, card_core0_regs_fifo
 assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_written_addr == 144);
 
 
-always @(card_core0_regs_fifo1_reg_word77_shown_wide, card_core0_regs_fifo1_reg_word77_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word77_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word77_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word77_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word77_written = ((card_core0_regs_fifo1_reg_word77_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word77_merged = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | (card_core0_regs_fifo1_written_data[23-1:0] & card_core0_regs_fifo1_written_mask[23-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word77_written) begin: card_core0_regs_fifo1_reg_word77__limit53_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word77_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word77_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word77_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole = {(!card_core0_regs_fifo1_reg_word77_zero_above), card_core0_regs_fifo1_reg_word77_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word77__limit36_below = ((card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole[24-1:1] == 0) && (card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word77__limit36_above = (card_core0_regs_fifo1_reg_word77__limit36__bounds50_whole[24-1:23] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word77__limit36_below, card_core0_regs_fifo1_reg_word77__limit36_above, card_core0_regs_fifo1_reg_word77_merged) begin: card_core0_regs_fifo1_reg_word77__limit36__clamp33_clamp
+    card_core0_regs_fifo1_reg_word77_out_of_range = (card_core0_regs_fifo1_reg_word77__limit36_below || card_core0_regs_fifo1_reg_word77__limit36_above);
+    if (card_core0_regs_fifo1_reg_word77__limit36_below) begin
         card_core0_regs_fifo1_reg_word77_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word77_written[32-1:23] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word77__limit36_above) begin
         card_core0_regs_fifo1_reg_word77_honoured = 8388607;
     end
     else begin
-        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_written[23-1:0];
-        card_core0_regs_fifo1_reg_word77_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word77_honoured = card_core0_regs_fifo1_reg_word77_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word77_zero_above = ((card_core0_regs_fifo1_written_data[32-1:23] & card_core0_regs_fifo1_written_mask[32-1:23]) == 0);
 
 
 
@@ -4358,27 +4909,70 @@ assign card_core0_regs_fifo1_reg_word78_shown_wide = {24'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word78_mine_write = (card_core0_regs_fifo1_written_addr == 148);
 
 
-always @(card_core0_regs_fifo1_reg_word78_shown_wide, card_core0_regs_fifo1_set_strobe, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word78_merge_bytes
-    if ((card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8))) begin
-        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_set_value[32-1:0];
+
+assign card_core0_regs_fifo1_reg_word78_merged = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+
+
+
+assign card_core0_regs_fifo1_reg_word78_set_selected = (card_core0_regs_fifo1_set_strobe && (card_core0_regs_fifo1_set_index == 8));
+
+
+always @(card_core0_regs_fifo1_reg_word78_merged, card_core0_regs_fifo1_reg_word78_set_low, card_core0_regs_fifo1_reg_word78_set_selected) begin: card_core0_regs_fifo1_reg_word78_set_or_bytes
+    if (card_core0_regs_fifo1_reg_word78_set_selected) begin
+        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_reg_word78_set_low;
     end
     else begin
-        card_core0_regs_fifo1_reg_word78_written = ((card_core0_regs_fifo1_reg_word78_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
+        card_core0_regs_fifo1_reg_word78_written = card_core0_regs_fifo1_reg_word78_merged;
     end
 end
 
 
-always @(card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit54_clamp_unsigned_power_of_two
-    card_core0_regs_fifo1_reg_word78_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word78_written[32-1:1] == 0) && (card_core0_regs_fifo1_reg_word78_written[1-1:0] < 1))) begin
+
+assign card_core0_regs_fifo1_reg_word78_set_low = card_core0_regs_fifo1_set_value[8-1:0];
+assign card_core0_regs_fifo1_reg_word78_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
+assign card_core0_regs_fifo1_reg_word78_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole = {(!card_core0_regs_fifo1_reg_word78_set_zero), card_core0_regs_fifo1_reg_word78_set_low};
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit_either17_set_below = ((card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word78__limit_either17_set_above = (card_core0_regs_fifo1_reg_word78__limit_either17__bounds51_whole[9-1:8] != 0);
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole = {(!card_core0_regs_fifo1_reg_word78_bus_zero), card_core0_regs_fifo1_reg_word78_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word78__limit_either17_bus_below = ((card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole[9-1:1] == 0) && (card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole[1-1:0] < 1));
+assign card_core0_regs_fifo1_reg_word78__limit_either17_bus_above = (card_core0_regs_fifo1_reg_word78__limit_either17__bounds52_whole[9-1:8] != 0);
+
+
+always @(card_core0_regs_fifo1_reg_word78__limit_either17_set_below, card_core0_regs_fifo1_reg_word78_set_selected, card_core0_regs_fifo1_reg_word78__limit_either17_bus_above, card_core0_regs_fifo1_reg_word78__limit_either17_set_above, card_core0_regs_fifo1_reg_word78__limit_either17_bus_below) begin: card_core0_regs_fifo1_reg_word78__limit_either17_choose
+    if (card_core0_regs_fifo1_reg_word78_set_selected) begin
+        card_core0_regs_fifo1_reg_word78__limit_either17_below = card_core0_regs_fifo1_reg_word78__limit_either17_set_below;
+        card_core0_regs_fifo1_reg_word78__limit_either17_above = card_core0_regs_fifo1_reg_word78__limit_either17_set_above;
+    end
+    else begin
+        card_core0_regs_fifo1_reg_word78__limit_either17_below = card_core0_regs_fifo1_reg_word78__limit_either17_bus_below;
+        card_core0_regs_fifo1_reg_word78__limit_either17_above = card_core0_regs_fifo1_reg_word78__limit_either17_bus_above;
+    end
+end
+
+
+always @(card_core0_regs_fifo1_reg_word78__limit_either17_below, card_core0_regs_fifo1_reg_word78__limit_either17_above, card_core0_regs_fifo1_reg_word78_written) begin: card_core0_regs_fifo1_reg_word78__limit_either17__clamp34_clamp
+    card_core0_regs_fifo1_reg_word78_out_of_range = (card_core0_regs_fifo1_reg_word78__limit_either17_below || card_core0_regs_fifo1_reg_word78__limit_either17_above);
+    if (card_core0_regs_fifo1_reg_word78__limit_either17_below) begin
         card_core0_regs_fifo1_reg_word78_honoured = 1;
     end
-    else if ((card_core0_regs_fifo1_reg_word78_written[32-1:8] != 0)) begin
+    else if (card_core0_regs_fifo1_reg_word78__limit_either17_above) begin
         card_core0_regs_fifo1_reg_word78_honoured = 255;
     end
     else begin
-        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written[8-1:0];
-        card_core0_regs_fifo1_reg_word78_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word78_honoured = card_core0_regs_fifo1_reg_word78_written;
     end
 end
 
@@ -4424,26 +5018,35 @@ assign card_core0_regs_fifo1_reg_word79_shown_wide = {30'h0, card_core0_regs_fif
 assign card_core0_regs_fifo1_reg_word79_mine_write = (card_core0_regs_fifo1_written_addr == 152);
 
 
-always @(card_core0_regs_fifo1_reg_word79_shown_wide, card_core0_regs_fifo1_reg_word79_set_mine, card_core0_regs_fifo1_written_mask, card_core0_regs_fifo1_set_index, card_core0_regs_fifo1_written_data, card_core0_regs_fifo1_set_value) begin: card_core0_regs_fifo1_reg_word79_merge_bytes
-    if ((card_core0_regs_fifo1_reg_word79_set_mine && (card_core0_regs_fifo1_set_index == 0))) begin
-        card_core0_regs_fifo1_reg_word79_written = card_core0_regs_fifo1_set_value[32-1:0];
-    end
-    else begin
-        card_core0_regs_fifo1_reg_word79_written = ((card_core0_regs_fifo1_reg_word79_shown_wide[32-1:0] & (~card_core0_regs_fifo1_written_mask[32-1:0])) | (card_core0_regs_fifo1_written_data[32-1:0] & card_core0_regs_fifo1_written_mask[32-1:0]));
-    end
-end
+
+assign card_core0_regs_fifo1_reg_word79_merged = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
 
 
-always @(card_core0_regs_fifo1_reg_word79_written) begin: card_core0_regs_fifo1_reg_word79__limit55_clamp_above
-    card_core0_regs_fifo1_reg_word79_out_of_range = 1'b1;
-    if (((card_core0_regs_fifo1_reg_word79_written[32-1:2] != 0) || (card_core0_regs_fifo1_reg_word79_written[2-1:0] > 2))) begin
+
+assign card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole = {(!card_core0_regs_fifo1_reg_word79_zero_above), card_core0_regs_fifo1_reg_word79_merged};
+
+
+
+assign card_core0_regs_fifo1_reg_word79__limit37_below = 1'b0;
+assign card_core0_regs_fifo1_reg_word79__limit37_above = ((card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole[3-1:2] != 0) || (card_core0_regs_fifo1_reg_word79__limit37__bounds53_whole[2-1:0] > 2));
+
+
+always @(card_core0_regs_fifo1_reg_word79__limit37_below, card_core0_regs_fifo1_reg_word79__limit37_above, card_core0_regs_fifo1_reg_word79_merged) begin: card_core0_regs_fifo1_reg_word79__limit37__clamp35_clamp
+    card_core0_regs_fifo1_reg_word79_out_of_range = (card_core0_regs_fifo1_reg_word79__limit37_below || card_core0_regs_fifo1_reg_word79__limit37_above);
+    if (card_core0_regs_fifo1_reg_word79__limit37_below) begin
+        card_core0_regs_fifo1_reg_word79_honoured = 0;
+    end
+    else if (card_core0_regs_fifo1_reg_word79__limit37_above) begin
         card_core0_regs_fifo1_reg_word79_honoured = 2;
     end
     else begin
-        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_written[2-1:0];
-        card_core0_regs_fifo1_reg_word79_out_of_range = 1'b0;
+        card_core0_regs_fifo1_reg_word79_honoured = card_core0_regs_fifo1_reg_word79_merged;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_reg_word79_zero_above = ((card_core0_regs_fifo1_written_data[32-1:2] & card_core0_regs_fifo1_written_mask[32-1:2]) == 0);
 
 
 

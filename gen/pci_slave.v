@@ -1408,38 +1408,38 @@ always @(posedge clock, negedge reset) begin: pci_config0_config_registers
                 end
                 'h4: begin
                     if ((!config_cbe_n[0])) begin
-                        bar0[8-1:0] <= config_data[8-1:0];
+                        bar0[8-1:0] <= (config_data[8-1:0] & 192);
                     end
                     if ((!config_cbe_n[1])) begin
-                        bar0[16-1:8] <= config_data[16-1:8];
+                        bar0[16-1:8] <= (config_data[16-1:8] & 255);
                     end
                 end
                 'h5: begin
                     if ((!config_cbe_n[0])) begin
-                        bar1[8-1:0] <= config_data[8-1:0];
+                        bar1[8-1:0] <= (config_data[8-1:0] & 0);
                     end
                     if ((!config_cbe_n[1])) begin
-                        bar1[16-1:8] <= config_data[16-1:8];
+                        bar1[16-1:8] <= (config_data[16-1:8] & 240);
                     end
                     if ((!config_cbe_n[2])) begin
-                        bar1[24-1:16] <= config_data[24-1:16];
+                        bar1[24-1:16] <= (config_data[24-1:16] & 255);
                     end
                     if ((!config_cbe_n[3])) begin
-                        bar1[32-1:24] <= config_data[32-1:24];
+                        bar1[32-1:24] <= (config_data[32-1:24] & 255);
                     end
                 end
                 'h6: begin
                     if ((!config_cbe_n[0])) begin
-                        bar2[8-1:0] <= config_data[8-1:0];
+                        bar2[8-1:0] <= (config_data[8-1:0] & 192);
                     end
                     if ((!config_cbe_n[1])) begin
-                        bar2[16-1:8] <= config_data[16-1:8];
+                        bar2[16-1:8] <= (config_data[16-1:8] & 255);
                     end
                     if ((!config_cbe_n[2])) begin
-                        bar2[24-1:16] <= config_data[24-1:16];
+                        bar2[24-1:16] <= (config_data[24-1:16] & 255);
                     end
                     if ((!config_cbe_n[3])) begin
-                        bar2[32-1:24] <= config_data[32-1:24];
+                        bar2[32-1:24] <= (config_data[32-1:24] & 255);
                     end
                 end
                 'hf: begin

@@ -273,21 +273,21 @@ wire reg_word0_chain_in_clamped;
 wire [1:0] reg_word1_honoured;
 wire reg_word1_out_of_range;
 reg reg_word1_clamped;
+wire [1:0] reg_word1_merged;
 wire reg_word1_mine;
 wire reg_word1_mine_write;
 wire reg_word1_set_mine;
 wire [31:0] reg_word1_shown_wide;
-reg [1:0] reg_word1_written;
 reg [31:0] reg_word1_chain_out_data;
 wire reg_word1_chain_out_clamped;
 wire [3:0] reg_word2_honoured;
 wire reg_word2_out_of_range;
 wire [3:0] reg_word2_shown;
 reg reg_word2_clamped;
+wire [3:0] reg_word2_merged;
 wire reg_word2_mine;
 wire reg_word2_mine_write;
 wire [31:0] reg_word2_shown_wide;
-wire [3:0] reg_word2_written;
 reg [31:0] reg_word2_chain_out_data;
 wire reg_word2_chain_out_clamped;
 reg [31:0] reg_word3_shown;
@@ -299,33 +299,37 @@ wire [9:0] reg_word4_honoured;
 wire reg_word4_out_of_range;
 reg [9:0] reg_word4_shown;
 reg reg_word4_clamped;
+wire [9:0] reg_word4_merged;
 wire reg_word4_mine;
 wire reg_word4_mine_write;
 wire reg_word4_set_mine;
 wire [31:0] reg_word4_shown_wide;
-reg [9:0] reg_word4_written;
 reg [31:0] reg_word4_chain_out_data;
 wire reg_word4_chain_out_clamped;
 wire [9:0] reg_word5_honoured;
 reg [9:0] reg_word5_shown;
+wire [9:0] reg_word5_merged;
 wire reg_word5_mine;
 wire reg_word5_mine_write;
 wire [31:0] reg_word5_shown_wide;
-wire [9:0] reg_word5_written;
 reg [31:0] reg_word5_chain_out_data;
 wire reg_word5_chain_out_clamped;
 reg [9:0] reg_word5__store3_word_hw;
+wire reg_word6_zero_above;
 reg [15:0] reg_word6_honoured;
 reg reg_word6_out_of_range;
 reg [15:0] reg_word6_shown;
 reg reg_word6_clamped;
+wire [15:0] reg_word6_merged;
 wire reg_word6_mine;
 wire reg_word6_mine_write;
 wire reg_word6_set_mine;
 wire [31:0] reg_word6_shown_wide;
-reg [31:0] reg_word6_written;
 reg [31:0] reg_word6_chain_out_data;
 wire reg_word6_chain_out_clamped;
+wire reg_word6__limit4_below;
+wire reg_word6__limit4_above;
+wire [16:0] reg_word6__limit4__bounds0_whole;
 reg [15:0] reg_word7_shown;
 wire reg_word7_mine;
 wire [31:0] reg_word7_shown_wide;
@@ -344,113 +348,223 @@ wire reg_word9_chain_out_clamped;
 reg [15:0] reg_word10_honoured;
 reg reg_word10_out_of_range;
 reg [15:0] reg_word10_shown;
+wire reg_word10_bus_zero;
 reg reg_word10_clamped;
+wire [15:0] reg_word10_merged;
 wire reg_word10_mine;
 wire reg_word10_mine_write;
+wire [15:0] reg_word10_set_low;
+wire reg_word10_set_selected;
+wire reg_word10_set_zero;
 wire [31:0] reg_word10_shown_wide;
-reg [31:0] reg_word10_written;
+reg [15:0] reg_word10_written;
 reg [31:0] reg_word10_chain_out_data;
 wire reg_word10_chain_out_clamped;
+reg reg_word10__limit_either0_above;
+reg reg_word10__limit_either0_below;
+wire reg_word10__limit_either0_bus_above;
+wire reg_word10__limit_either0_bus_below;
+wire reg_word10__limit_either0_set_above;
+wire reg_word10__limit_either0_set_below;
+wire [16:0] reg_word10__limit_either0__bounds1_whole;
+wire [16:0] reg_word10__limit_either0__bounds2_whole;
 reg [15:0] reg_word11_honoured;
 reg reg_word11_out_of_range;
 reg [15:0] reg_word11_shown;
+wire reg_word11_bus_zero;
 reg reg_word11_clamped;
+wire [15:0] reg_word11_merged;
 wire reg_word11_mine;
 wire reg_word11_mine_write;
+wire [15:0] reg_word11_set_low;
+wire reg_word11_set_selected;
+wire reg_word11_set_zero;
 wire [31:0] reg_word11_shown_wide;
-reg [31:0] reg_word11_written;
+reg [15:0] reg_word11_written;
 reg [31:0] reg_word11_chain_out_data;
 wire reg_word11_chain_out_clamped;
+reg reg_word11__limit_either1_above;
+reg reg_word11__limit_either1_below;
+wire reg_word11__limit_either1_bus_above;
+wire reg_word11__limit_either1_bus_below;
+wire reg_word11__limit_either1_set_above;
+wire reg_word11__limit_either1_set_below;
+wire [16:0] reg_word11__limit_either1__bounds3_whole;
+wire [16:0] reg_word11__limit_either1__bounds4_whole;
 reg [15:0] reg_word12_honoured;
 reg reg_word12_out_of_range;
+wire reg_word12_bus_zero;
 reg reg_word12_clamped;
+wire [15:0] reg_word12_merged;
 wire reg_word12_mine;
 wire reg_word12_mine_write;
+wire [15:0] reg_word12_set_low;
+wire reg_word12_set_selected;
+wire reg_word12_set_zero;
 wire [31:0] reg_word12_shown_wide;
-reg [31:0] reg_word12_written;
+reg [15:0] reg_word12_written;
 reg [31:0] reg_word12_chain_out_data;
 wire reg_word12_chain_out_clamped;
+reg reg_word12__limit_either2_above;
+reg reg_word12__limit_either2_below;
+wire reg_word12__limit_either2_bus_above;
+wire reg_word12__limit_either2_bus_below;
+wire reg_word12__limit_either2_set_above;
+wire reg_word12__limit_either2_set_below;
+wire [16:0] reg_word12__limit_either2__bounds5_whole;
+wire [16:0] reg_word12__limit_either2__bounds6_whole;
 reg [7:0] reg_word13_honoured;
 reg reg_word13_out_of_range;
 reg [7:0] reg_word13_shown;
+wire reg_word13_bus_zero;
 reg reg_word13_clamped;
+wire [7:0] reg_word13_merged;
 wire reg_word13_mine;
 wire reg_word13_mine_write;
+wire [7:0] reg_word13_set_low;
+wire reg_word13_set_selected;
+wire reg_word13_set_zero;
 wire [31:0] reg_word13_shown_wide;
-reg [31:0] reg_word13_written;
+reg [7:0] reg_word13_written;
 reg [31:0] reg_word13_chain_out_data;
 wire reg_word13_chain_out_clamped;
+reg reg_word13__limit_either3_above;
+reg reg_word13__limit_either3_below;
+wire reg_word13__limit_either3_bus_above;
+wire reg_word13__limit_either3_bus_below;
+wire reg_word13__limit_either3_set_above;
+wire reg_word13__limit_either3_set_below;
+wire [8:0] reg_word13__limit_either3__bounds7_whole;
+wire [8:0] reg_word13__limit_either3__bounds8_whole;
 reg [7:0] reg_word14_honoured;
 reg reg_word14_out_of_range;
 reg [7:0] reg_word14_shown;
+wire reg_word14_bus_zero;
 reg reg_word14_clamped;
+wire [7:0] reg_word14_merged;
 wire reg_word14_mine;
 wire reg_word14_mine_write;
+wire [7:0] reg_word14_set_low;
+wire reg_word14_set_selected;
+wire reg_word14_set_zero;
 wire [31:0] reg_word14_shown_wide;
-reg [31:0] reg_word14_written;
+reg [7:0] reg_word14_written;
 reg [31:0] reg_word14_chain_out_data;
 wire reg_word14_chain_out_clamped;
+reg reg_word14__limit_either4_above;
+reg reg_word14__limit_either4_below;
+wire reg_word14__limit_either4_bus_above;
+wire reg_word14__limit_either4_bus_below;
+wire reg_word14__limit_either4_set_above;
+wire reg_word14__limit_either4_set_below;
+wire [8:0] reg_word14__limit_either4__bounds9_whole;
+wire [8:0] reg_word14__limit_either4__bounds10_whole;
 reg [7:0] reg_word15_honoured;
 reg reg_word15_out_of_range;
 reg [7:0] reg_word15_shown;
+wire reg_word15_bus_zero;
 reg reg_word15_clamped;
+wire [7:0] reg_word15_merged;
 wire reg_word15_mine;
 wire reg_word15_mine_write;
+wire [7:0] reg_word15_set_low;
+wire reg_word15_set_selected;
+wire reg_word15_set_zero;
 wire [31:0] reg_word15_shown_wide;
-reg [31:0] reg_word15_written;
+reg [7:0] reg_word15_written;
 reg [31:0] reg_word15_chain_out_data;
 wire reg_word15_chain_out_clamped;
+reg reg_word15__limit_either5_above;
+reg reg_word15__limit_either5_below;
+wire reg_word15__limit_either5_bus_above;
+wire reg_word15__limit_either5_bus_below;
+wire reg_word15__limit_either5_set_above;
+wire reg_word15__limit_either5_set_below;
+wire [8:0] reg_word15__limit_either5__bounds11_whole;
+wire [8:0] reg_word15__limit_either5__bounds12_whole;
 wire [5:0] reg_word16_honoured;
 wire reg_word16_out_of_range;
 reg [5:0] reg_word16_shown;
 reg reg_word16_clamped;
+wire [5:0] reg_word16_merged;
 wire reg_word16_mine;
 wire reg_word16_mine_write;
 wire reg_word16_set_mine;
 wire [31:0] reg_word16_shown_wide;
-reg [5:0] reg_word16_written;
 reg [31:0] reg_word16_chain_out_data;
 wire reg_word16_chain_out_clamped;
 reg [15:0] reg_word17_honoured;
 reg reg_word17_out_of_range;
 reg [15:0] reg_word17_shown;
+wire reg_word17_bus_zero;
 reg reg_word17_clamped;
+wire [15:0] reg_word17_merged;
 wire reg_word17_mine;
 wire reg_word17_mine_write;
+wire [15:0] reg_word17_set_low;
+wire reg_word17_set_selected;
+wire reg_word17_set_zero;
 wire [31:0] reg_word17_shown_wide;
-reg [31:0] reg_word17_written;
+reg [15:0] reg_word17_written;
 reg [31:0] reg_word17_chain_out_data;
 wire reg_word17_chain_out_clamped;
+reg reg_word17__limit_either6_above;
+reg reg_word17__limit_either6_below;
+wire reg_word17__limit_either6_bus_above;
+wire reg_word17__limit_either6_bus_below;
+wire reg_word17__limit_either6_set_above;
+wire reg_word17__limit_either6_set_below;
+wire [16:0] reg_word17__limit_either6__bounds13_whole;
+wire [16:0] reg_word17__limit_either6__bounds14_whole;
 reg [15:0] reg_word18_honoured;
 reg reg_word18_out_of_range;
 reg [15:0] reg_word18_shown;
+wire reg_word18_bus_zero;
 reg reg_word18_clamped;
+wire [15:0] reg_word18_merged;
 wire reg_word18_mine;
 wire reg_word18_mine_write;
+wire [15:0] reg_word18_set_low;
+wire reg_word18_set_selected;
+wire reg_word18_set_zero;
 wire [31:0] reg_word18_shown_wide;
-reg [31:0] reg_word18_written;
+reg [15:0] reg_word18_written;
 reg [31:0] reg_word18_chain_out_data;
 wire reg_word18_chain_out_clamped;
+reg reg_word18__limit_either7_above;
+reg reg_word18__limit_either7_below;
+wire reg_word18__limit_either7_bus_above;
+wire reg_word18__limit_either7_bus_below;
+wire reg_word18__limit_either7_set_above;
+wire reg_word18__limit_either7_set_below;
+wire [16:0] reg_word18__limit_either7__bounds15_whole;
+wire [16:0] reg_word18__limit_either7__bounds16_whole;
+wire reg_word19_zero_above;
+wire reg_word19_ones_above;
+wire reg_word19_sign;
 reg [23:0] reg_word19_honoured;
 reg reg_word19_out_of_range;
 reg [23:0] reg_word19_shown;
 reg reg_word19_clamped;
+wire [23:0] reg_word19_merged;
 wire reg_word19_mine;
 wire reg_word19_mine_write;
 wire [31:0] reg_word19_shown_wide;
-wire [31:0] reg_word19_written;
 reg [31:0] reg_word19_chain_out_data;
 wire reg_word19_chain_out_clamped;
 reg reg_word19__store14_word_strobe;
 reg [23:0] reg_word19__store14_word_value;
+wire reg_word20_zero_above;
+wire reg_word20_ones_above;
+wire reg_word20_sign;
 reg [23:0] reg_word20_honoured;
 reg reg_word20_out_of_range;
 reg [23:0] reg_word20_shown;
 reg reg_word20_clamped;
+wire [23:0] reg_word20_merged;
 wire reg_word20_mine;
 wire reg_word20_mine_write;
 wire [31:0] reg_word20_shown_wide;
-wire [31:0] reg_word20_written;
 reg [31:0] reg_word20_chain_out_data;
 wire reg_word20_chain_out_clamped;
 reg reg_word20__store15_word_strobe;
@@ -473,11 +587,11 @@ wire reg_word23_chain_out_clamped;
 wire [1:0] reg_word24_honoured;
 wire reg_word24_out_of_range;
 reg reg_word24_clamped;
+wire [1:0] reg_word24_merged;
 wire reg_word24_mine;
 wire reg_word24_mine_write;
 wire reg_word24_set_mine;
 wire [31:0] reg_word24_shown_wide;
-reg [1:0] reg_word24_written;
 reg [31:0] reg_word24_chain_out_data;
 wire reg_word24_chain_out_clamped;
 reg [19:0] reg_word25_shown;
@@ -494,54 +608,66 @@ wire [6:0] reg_word27_honoured;
 wire reg_word27_out_of_range;
 reg [6:0] reg_word27_shown;
 reg reg_word27_clamped;
+wire [6:0] reg_word27_merged;
 wire reg_word27_mine;
 wire reg_word27_mine_write;
 wire reg_word27_set_mine;
 wire [31:0] reg_word27_shown_wide;
-reg [6:0] reg_word27_written;
 reg [31:0] reg_word27_chain_out_data;
 wire reg_word27_chain_out_clamped;
+wire reg_word28_zero_above;
 reg [3:0] reg_word28_honoured;
 reg reg_word28_out_of_range;
 reg [3:0] reg_word28_shown;
 reg reg_word28_clamped;
+wire [3:0] reg_word28_merged;
 wire reg_word28_mine;
 wire reg_word28_mine_write;
 wire reg_word28_set_mine;
 wire [31:0] reg_word28_shown_wide;
-reg [31:0] reg_word28_written;
 reg [31:0] reg_word28_chain_out_data;
 wire reg_word28_chain_out_clamped;
+wire reg_word28__limit10_below;
+wire reg_word28__limit10_above;
+wire [4:0] reg_word28__limit10__bounds17_whole;
+wire reg_word29_zero_above;
 reg [15:0] reg_word29_honoured;
 reg reg_word29_out_of_range;
 reg [15:0] reg_word29_shown;
 reg reg_word29_clamped;
+wire [15:0] reg_word29_merged;
 wire reg_word29_mine;
 wire reg_word29_mine_write;
 wire reg_word29_set_mine;
 wire [31:0] reg_word29_shown_wide;
-reg [31:0] reg_word29_written;
 reg [31:0] reg_word29_chain_out_data;
 wire reg_word29_chain_out_clamped;
+wire reg_word29__limit11_below;
+wire reg_word29__limit11_above;
+wire [16:0] reg_word29__limit11__bounds18_whole;
+wire reg_word30_zero_above;
 reg [23:0] reg_word30_honoured;
 reg reg_word30_out_of_range;
 reg reg_word30_clamped;
+wire [23:0] reg_word30_merged;
 wire reg_word30_mine;
 wire reg_word30_mine_write;
 wire [31:0] reg_word30_shown_wide;
-wire [31:0] reg_word30_written;
 reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
+wire reg_word30__limit12_below;
+wire reg_word30__limit12_above;
+wire [24:0] reg_word30__limit12__bounds19_whole;
 reg reg_word30__store20_word_strobe;
 reg [23:0] reg_word30__store20_word_value;
 wire [6:0] reg_word31_honoured;
 wire reg_word31_out_of_range;
 reg [6:0] reg_word31_shown;
 reg reg_word31_clamped;
+wire [6:0] reg_word31_merged;
 wire reg_word31_mine;
 wire reg_word31_mine_write;
 wire [31:0] reg_word31_shown_wide;
-wire [6:0] reg_word31_written;
 reg [31:0] reg_word31_chain_out_data;
 wire reg_word31_chain_out_clamped;
 reg reg_word31__store21_word_strobe;
@@ -551,70 +677,103 @@ wire reg_word32_mine;
 wire [31:0] reg_word32_shown_wide;
 reg [31:0] reg_word32_chain_out_data;
 wire reg_word32_chain_out_clamped;
+wire reg_word33_zero_above;
 reg [15:0] reg_word33_honoured;
 reg reg_word33_out_of_range;
 reg [15:0] reg_word33_shown;
 reg reg_word33_clamped;
+wire [15:0] reg_word33_merged;
 wire reg_word33_mine;
 wire reg_word33_mine_write;
 wire reg_word33_set_mine;
 wire [31:0] reg_word33_shown_wide;
-reg [31:0] reg_word33_written;
 reg [31:0] reg_word33_chain_out_data;
 wire reg_word33_chain_out_clamped;
+wire reg_word33__limit14_below;
+wire reg_word33__limit14_above;
+wire [16:0] reg_word33__limit14__bounds20_whole;
+wire reg_word34_zero_above;
 reg [15:0] reg_word34_honoured;
 reg reg_word34_out_of_range;
 reg [15:0] reg_word34_shown;
 reg reg_word34_clamped;
+wire [15:0] reg_word34_merged;
 wire reg_word34_mine;
 wire reg_word34_mine_write;
 wire reg_word34_set_mine;
 wire [31:0] reg_word34_shown_wide;
-reg [31:0] reg_word34_written;
 reg [31:0] reg_word34_chain_out_data;
 wire reg_word34_chain_out_clamped;
+wire reg_word34__limit15_below;
+wire reg_word34__limit15_above;
+wire [16:0] reg_word34__limit15__bounds21_whole;
+wire reg_word35_zero_above;
 reg [15:0] reg_word35_honoured;
 reg reg_word35_out_of_range;
 reg [15:0] reg_word35_shown;
 reg reg_word35_clamped;
+wire [15:0] reg_word35_merged;
 wire reg_word35_mine;
 wire reg_word35_mine_write;
 wire reg_word35_set_mine;
 wire [31:0] reg_word35_shown_wide;
-reg [31:0] reg_word35_written;
 reg [31:0] reg_word35_chain_out_data;
 wire reg_word35_chain_out_clamped;
+wire reg_word35__limit16_below;
+wire reg_word35__limit16_above;
+wire [16:0] reg_word35__limit16__bounds22_whole;
+wire reg_word36_zero_above;
 reg [22:0] reg_word36_honoured;
 reg reg_word36_out_of_range;
 reg [22:0] reg_word36_shown;
 reg reg_word36_clamped;
+wire [22:0] reg_word36_merged;
 wire reg_word36_mine;
 wire reg_word36_mine_write;
 wire reg_word36_set_mine;
 wire [31:0] reg_word36_shown_wide;
-reg [31:0] reg_word36_written;
 reg [31:0] reg_word36_chain_out_data;
 wire reg_word36_chain_out_clamped;
+wire reg_word36__limit17_below;
+wire reg_word36__limit17_above;
+wire [23:0] reg_word36__limit17__bounds23_whole;
 reg [7:0] reg_word37_honoured;
 reg reg_word37_out_of_range;
 reg [7:0] reg_word37_shown;
+wire reg_word37_bus_zero;
 reg reg_word37_clamped;
+wire [7:0] reg_word37_merged;
 wire reg_word37_mine;
 wire reg_word37_mine_write;
+wire [7:0] reg_word37_set_low;
+wire reg_word37_set_selected;
+wire reg_word37_set_zero;
 wire [31:0] reg_word37_shown_wide;
-reg [31:0] reg_word37_written;
+reg [7:0] reg_word37_written;
 reg [31:0] reg_word37_chain_out_data;
 wire reg_word37_chain_out_clamped;
+reg reg_word37__limit_either8_above;
+reg reg_word37__limit_either8_below;
+wire reg_word37__limit_either8_bus_above;
+wire reg_word37__limit_either8_bus_below;
+wire reg_word37__limit_either8_set_above;
+wire reg_word37__limit_either8_set_below;
+wire [8:0] reg_word37__limit_either8__bounds24_whole;
+wire [8:0] reg_word37__limit_either8__bounds25_whole;
+wire reg_word38_zero_above;
 reg [1:0] reg_word38_honoured;
 reg reg_word38_out_of_range;
 reg reg_word38_clamped;
+wire [1:0] reg_word38_merged;
 wire reg_word38_mine;
 wire reg_word38_mine_write;
 wire reg_word38_set_mine;
 wire [31:0] reg_word38_shown_wide;
-reg [31:0] reg_word38_written;
 reg [31:0] reg_word38_chain_out_data;
 wire reg_word38_chain_out_clamped;
+wire reg_word38__limit18_below;
+wire reg_word38__limit18_above;
+wire [2:0] reg_word38__limit18__bounds26_whole;
 reg [6:0] reg_word39_shown;
 wire reg_word39_mine;
 wire [31:0] reg_word39_shown_wide;
@@ -1040,18 +1199,12 @@ assign reg_word1_shown_wide = {30'h0, control};
 assign reg_word1_mine_write = (written_addr == 4);
 
 
-always @(reg_word1_shown_wide, reg_word1_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word1_merge_bytes
-    if ((reg_word1_set_mine && (set_index == 0))) begin
-        reg_word1_written = set_value[2-1:0];
-    end
-    else begin
-        reg_word1_written = ((reg_word1_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
-    end
-end
+
+assign reg_word1_merged = ((control & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
 
 
 
-assign reg_word1_honoured = reg_word1_written[2-1:0];
+assign reg_word1_honoured = reg_word1_merged;
 
 
 
@@ -1096,11 +1249,11 @@ assign reg_word2_mine_write = (written_addr == 8);
 
 
 
-assign reg_word2_written = (written_data[4-1:0] & written_mask[4-1:0]);
+assign reg_word2_merged = (written_data[4-1:0] & written_mask[4-1:0]);
 
 
 
-assign reg_word2_honoured = reg_word2_written[4-1:0];
+assign reg_word2_honoured = reg_word2_merged;
 
 
 
@@ -1169,18 +1322,12 @@ assign reg_word4_shown_wide = {22'h0, reg_word4_shown};
 assign reg_word4_mine_write = (written_addr == 16);
 
 
-always @(reg_word4_shown_wide, reg_word4_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word4_merge_bytes
-    if ((reg_word4_set_mine && (set_index == 0))) begin
-        reg_word4_written = set_value[10-1:0];
-    end
-    else begin
-        reg_word4_written = ((reg_word4_shown_wide[10-1:0] & (~written_mask[10-1:0])) | (written_data[10-1:0] & written_mask[10-1:0]));
-    end
-end
+
+assign reg_word4_merged = ((reg_word4_shown & (~written_mask[10-1:0])) | (written_data[10-1:0] & written_mask[10-1:0]));
 
 
 
-assign reg_word4_honoured = reg_word4_written[10-1:0];
+assign reg_word4_honoured = reg_word4_merged;
 
 
 
@@ -1225,11 +1372,11 @@ assign reg_word5_mine_write = (written_addr == 20);
 
 
 
-assign reg_word5_written = (written_data[10-1:0] & written_mask[10-1:0]);
+assign reg_word5_merged = (written_data[10-1:0] & written_mask[10-1:0]);
 
 
 
-assign reg_word5_honoured = reg_word5_written[10-1:0];
+assign reg_word5_honoured = reg_word5_merged;
 
 
 
@@ -1273,26 +1420,35 @@ assign reg_word6_shown_wide = {16'h0, reg_word6_shown};
 assign reg_word6_mine_write = (written_addr == 24);
 
 
-always @(reg_word6_shown_wide, reg_word6_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word6_merge_bytes
-    if ((reg_word6_set_mine && (set_index == 0))) begin
-        reg_word6_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word6_written = ((reg_word6_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word6_merged = ((reg_word6_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word6_written) begin: reg_word6__limit4_clamp_above_power_of_two
-    reg_word6_out_of_range = 1'b1;
-    if ((reg_word6_written[32-1:16] != 0)) begin
+
+assign reg_word6__limit4__bounds0_whole = {(!reg_word6_zero_above), reg_word6_merged};
+
+
+
+assign reg_word6__limit4_below = 1'b0;
+assign reg_word6__limit4_above = (reg_word6__limit4__bounds0_whole[17-1:16] != 0);
+
+
+always @(reg_word6__limit4_below, reg_word6__limit4_above, reg_word6_merged) begin: reg_word6__limit4__clamp0_clamp
+    reg_word6_out_of_range = (reg_word6__limit4_below || reg_word6__limit4_above);
+    if (reg_word6__limit4_below) begin
+        reg_word6_honoured = 0;
+    end
+    else if (reg_word6__limit4_above) begin
         reg_word6_honoured = 65535;
     end
     else begin
-        reg_word6_honoured = reg_word6_written[16-1:0];
-        reg_word6_out_of_range = 1'b0;
+        reg_word6_honoured = reg_word6_merged;
     end
 end
+
+
+
+assign reg_word6_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
 
 
 
@@ -1402,27 +1558,70 @@ assign reg_word10_shown_wide = {16'h0, reg_word10_shown};
 assign reg_word10_mine_write = (written_addr == 40);
 
 
-always @(reg_word10_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word10_merge_bytes
-    if ((set_strobe && (set_index == 0))) begin
-        reg_word10_written = set_value[32-1:0];
+
+assign reg_word10_merged = ((reg_word10_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+
+
+
+assign reg_word10_set_selected = (set_strobe && (set_index == 0));
+
+
+always @(reg_word10_merged, reg_word10_set_low, reg_word10_set_selected) begin: reg_word10_set_or_bytes
+    if (reg_word10_set_selected) begin
+        reg_word10_written = reg_word10_set_low;
     end
     else begin
-        reg_word10_written = ((reg_word10_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word10_written = reg_word10_merged;
     end
 end
 
 
-always @(reg_word10_written) begin: reg_word10__limit5_clamp_unsigned
-    reg_word10_out_of_range = 1'b1;
-    if (((reg_word10_written[32-1:1] == 0) && (reg_word10_written[1-1:0] < 1))) begin
+
+assign reg_word10_set_low = set_value[16-1:0];
+assign reg_word10_set_zero = (set_value[32-1:16] == 0);
+assign reg_word10_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word10__limit_either0__bounds1_whole = {(!reg_word10_set_zero), reg_word10_set_low};
+
+
+
+assign reg_word10__limit_either0_set_below = ((reg_word10__limit_either0__bounds1_whole[17-1:1] == 0) && (reg_word10__limit_either0__bounds1_whole[1-1:0] < 1));
+assign reg_word10__limit_either0_set_above = ((reg_word10__limit_either0__bounds1_whole[17-1:16] != 0) || (reg_word10__limit_either0__bounds1_whole[16-1:0] > 32768));
+
+
+
+assign reg_word10__limit_either0__bounds2_whole = {(!reg_word10_bus_zero), reg_word10_merged};
+
+
+
+assign reg_word10__limit_either0_bus_below = ((reg_word10__limit_either0__bounds2_whole[17-1:1] == 0) && (reg_word10__limit_either0__bounds2_whole[1-1:0] < 1));
+assign reg_word10__limit_either0_bus_above = ((reg_word10__limit_either0__bounds2_whole[17-1:16] != 0) || (reg_word10__limit_either0__bounds2_whole[16-1:0] > 32768));
+
+
+always @(reg_word10__limit_either0_set_below, reg_word10_set_selected, reg_word10__limit_either0_bus_above, reg_word10__limit_either0_set_above, reg_word10__limit_either0_bus_below) begin: reg_word10__limit_either0_choose
+    if (reg_word10_set_selected) begin
+        reg_word10__limit_either0_below = reg_word10__limit_either0_set_below;
+        reg_word10__limit_either0_above = reg_word10__limit_either0_set_above;
+    end
+    else begin
+        reg_word10__limit_either0_below = reg_word10__limit_either0_bus_below;
+        reg_word10__limit_either0_above = reg_word10__limit_either0_bus_above;
+    end
+end
+
+
+always @(reg_word10__limit_either0_below, reg_word10__limit_either0_above, reg_word10_written) begin: reg_word10__limit_either0__clamp1_clamp
+    reg_word10_out_of_range = (reg_word10__limit_either0_below || reg_word10__limit_either0_above);
+    if (reg_word10__limit_either0_below) begin
         reg_word10_honoured = 1;
     end
-    else if (((reg_word10_written[32-1:16] != 0) || (reg_word10_written[16-1:0] > 32768))) begin
+    else if (reg_word10__limit_either0_above) begin
         reg_word10_honoured = 32768;
     end
     else begin
-        reg_word10_honoured = reg_word10_written[16-1:0];
-        reg_word10_out_of_range = 1'b0;
+        reg_word10_honoured = reg_word10_written;
     end
 end
 
@@ -1468,27 +1667,70 @@ assign reg_word11_shown_wide = {16'h0, reg_word11_shown};
 assign reg_word11_mine_write = (written_addr == 44);
 
 
-always @(reg_word11_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word11_merge_bytes
-    if ((set_strobe && (set_index == 1))) begin
-        reg_word11_written = set_value[32-1:0];
+
+assign reg_word11_merged = ((reg_word11_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+
+
+
+assign reg_word11_set_selected = (set_strobe && (set_index == 1));
+
+
+always @(reg_word11_merged, reg_word11_set_low, reg_word11_set_selected) begin: reg_word11_set_or_bytes
+    if (reg_word11_set_selected) begin
+        reg_word11_written = reg_word11_set_low;
     end
     else begin
-        reg_word11_written = ((reg_word11_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word11_written = reg_word11_merged;
     end
 end
 
 
-always @(reg_word11_written) begin: reg_word11__limit6_clamp_unsigned
-    reg_word11_out_of_range = 1'b1;
-    if (((reg_word11_written[32-1:1] == 0) && (reg_word11_written[1-1:0] < 1))) begin
+
+assign reg_word11_set_low = set_value[16-1:0];
+assign reg_word11_set_zero = (set_value[32-1:16] == 0);
+assign reg_word11_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word11__limit_either1__bounds3_whole = {(!reg_word11_set_zero), reg_word11_set_low};
+
+
+
+assign reg_word11__limit_either1_set_below = ((reg_word11__limit_either1__bounds3_whole[17-1:1] == 0) && (reg_word11__limit_either1__bounds3_whole[1-1:0] < 1));
+assign reg_word11__limit_either1_set_above = ((reg_word11__limit_either1__bounds3_whole[17-1:16] != 0) || (reg_word11__limit_either1__bounds3_whole[16-1:0] > 32768));
+
+
+
+assign reg_word11__limit_either1__bounds4_whole = {(!reg_word11_bus_zero), reg_word11_merged};
+
+
+
+assign reg_word11__limit_either1_bus_below = ((reg_word11__limit_either1__bounds4_whole[17-1:1] == 0) && (reg_word11__limit_either1__bounds4_whole[1-1:0] < 1));
+assign reg_word11__limit_either1_bus_above = ((reg_word11__limit_either1__bounds4_whole[17-1:16] != 0) || (reg_word11__limit_either1__bounds4_whole[16-1:0] > 32768));
+
+
+always @(reg_word11__limit_either1_set_below, reg_word11_set_selected, reg_word11__limit_either1_bus_above, reg_word11__limit_either1_set_above, reg_word11__limit_either1_bus_below) begin: reg_word11__limit_either1_choose
+    if (reg_word11_set_selected) begin
+        reg_word11__limit_either1_below = reg_word11__limit_either1_set_below;
+        reg_word11__limit_either1_above = reg_word11__limit_either1_set_above;
+    end
+    else begin
+        reg_word11__limit_either1_below = reg_word11__limit_either1_bus_below;
+        reg_word11__limit_either1_above = reg_word11__limit_either1_bus_above;
+    end
+end
+
+
+always @(reg_word11__limit_either1_below, reg_word11__limit_either1_above, reg_word11_written) begin: reg_word11__limit_either1__clamp2_clamp
+    reg_word11_out_of_range = (reg_word11__limit_either1_below || reg_word11__limit_either1_above);
+    if (reg_word11__limit_either1_below) begin
         reg_word11_honoured = 1;
     end
-    else if (((reg_word11_written[32-1:16] != 0) || (reg_word11_written[16-1:0] > 32768))) begin
+    else if (reg_word11__limit_either1_above) begin
         reg_word11_honoured = 32768;
     end
     else begin
-        reg_word11_honoured = reg_word11_written[16-1:0];
-        reg_word11_out_of_range = 1'b0;
+        reg_word11_honoured = reg_word11_written;
     end
 end
 
@@ -1534,24 +1776,70 @@ assign reg_word12_shown_wide = {16'h0, ramp_step};
 assign reg_word12_mine_write = (written_addr == 48);
 
 
-always @(reg_word12_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word12_merge_bytes
-    if ((set_strobe && (set_index == 2))) begin
-        reg_word12_written = set_value[32-1:0];
+
+assign reg_word12_merged = ((ramp_step & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+
+
+
+assign reg_word12_set_selected = (set_strobe && (set_index == 2));
+
+
+always @(reg_word12_merged, reg_word12_set_low, reg_word12_set_selected) begin: reg_word12_set_or_bytes
+    if (reg_word12_set_selected) begin
+        reg_word12_written = reg_word12_set_low;
     end
     else begin
-        reg_word12_written = ((reg_word12_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word12_written = reg_word12_merged;
     end
 end
 
 
-always @(reg_word12_written) begin: reg_word12__limit7_clamp_above_power_of_two
-    reg_word12_out_of_range = 1'b1;
-    if ((reg_word12_written[32-1:16] != 0)) begin
+
+assign reg_word12_set_low = set_value[16-1:0];
+assign reg_word12_set_zero = (set_value[32-1:16] == 0);
+assign reg_word12_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word12__limit_either2__bounds5_whole = {(!reg_word12_set_zero), reg_word12_set_low};
+
+
+
+assign reg_word12__limit_either2_set_below = 1'b0;
+assign reg_word12__limit_either2_set_above = (reg_word12__limit_either2__bounds5_whole[17-1:16] != 0);
+
+
+
+assign reg_word12__limit_either2__bounds6_whole = {(!reg_word12_bus_zero), reg_word12_merged};
+
+
+
+assign reg_word12__limit_either2_bus_below = 1'b0;
+assign reg_word12__limit_either2_bus_above = (reg_word12__limit_either2__bounds6_whole[17-1:16] != 0);
+
+
+always @(reg_word12__limit_either2_set_below, reg_word12_set_selected, reg_word12__limit_either2_bus_above, reg_word12__limit_either2_set_above, reg_word12__limit_either2_bus_below) begin: reg_word12__limit_either2_choose
+    if (reg_word12_set_selected) begin
+        reg_word12__limit_either2_below = reg_word12__limit_either2_set_below;
+        reg_word12__limit_either2_above = reg_word12__limit_either2_set_above;
+    end
+    else begin
+        reg_word12__limit_either2_below = reg_word12__limit_either2_bus_below;
+        reg_word12__limit_either2_above = reg_word12__limit_either2_bus_above;
+    end
+end
+
+
+always @(reg_word12__limit_either2_below, reg_word12__limit_either2_above, reg_word12_written) begin: reg_word12__limit_either2__clamp3_clamp
+    reg_word12_out_of_range = (reg_word12__limit_either2_below || reg_word12__limit_either2_above);
+    if (reg_word12__limit_either2_below) begin
+        reg_word12_honoured = 0;
+    end
+    else if (reg_word12__limit_either2_above) begin
         reg_word12_honoured = 65535;
     end
     else begin
-        reg_word12_honoured = reg_word12_written[16-1:0];
-        reg_word12_out_of_range = 1'b0;
+        reg_word12_honoured = reg_word12_written;
     end
 end
 
@@ -1597,27 +1885,70 @@ assign reg_word13_shown_wide = {24'h0, reg_word13_shown};
 assign reg_word13_mine_write = (written_addr == 52);
 
 
-always @(reg_word13_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word13_merge_bytes
-    if ((set_strobe && (set_index == 3))) begin
-        reg_word13_written = set_value[32-1:0];
+
+assign reg_word13_merged = ((reg_word13_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+
+
+
+assign reg_word13_set_selected = (set_strobe && (set_index == 3));
+
+
+always @(reg_word13_merged, reg_word13_set_low, reg_word13_set_selected) begin: reg_word13_set_or_bytes
+    if (reg_word13_set_selected) begin
+        reg_word13_written = reg_word13_set_low;
     end
     else begin
-        reg_word13_written = ((reg_word13_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word13_written = reg_word13_merged;
     end
 end
 
 
-always @(reg_word13_written) begin: reg_word13__limit8_clamp_unsigned_power_of_two
-    reg_word13_out_of_range = 1'b1;
-    if (((reg_word13_written[32-1:1] == 0) && (reg_word13_written[1-1:0] < 1))) begin
+
+assign reg_word13_set_low = set_value[8-1:0];
+assign reg_word13_set_zero = (set_value[32-1:8] == 0);
+assign reg_word13_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word13__limit_either3__bounds7_whole = {(!reg_word13_set_zero), reg_word13_set_low};
+
+
+
+assign reg_word13__limit_either3_set_below = ((reg_word13__limit_either3__bounds7_whole[9-1:1] == 0) && (reg_word13__limit_either3__bounds7_whole[1-1:0] < 1));
+assign reg_word13__limit_either3_set_above = (reg_word13__limit_either3__bounds7_whole[9-1:8] != 0);
+
+
+
+assign reg_word13__limit_either3__bounds8_whole = {(!reg_word13_bus_zero), reg_word13_merged};
+
+
+
+assign reg_word13__limit_either3_bus_below = ((reg_word13__limit_either3__bounds8_whole[9-1:1] == 0) && (reg_word13__limit_either3__bounds8_whole[1-1:0] < 1));
+assign reg_word13__limit_either3_bus_above = (reg_word13__limit_either3__bounds8_whole[9-1:8] != 0);
+
+
+always @(reg_word13__limit_either3_set_below, reg_word13_set_selected, reg_word13__limit_either3_bus_above, reg_word13__limit_either3_set_above, reg_word13__limit_either3_bus_below) begin: reg_word13__limit_either3_choose
+    if (reg_word13_set_selected) begin
+        reg_word13__limit_either3_below = reg_word13__limit_either3_set_below;
+        reg_word13__limit_either3_above = reg_word13__limit_either3_set_above;
+    end
+    else begin
+        reg_word13__limit_either3_below = reg_word13__limit_either3_bus_below;
+        reg_word13__limit_either3_above = reg_word13__limit_either3_bus_above;
+    end
+end
+
+
+always @(reg_word13__limit_either3_below, reg_word13__limit_either3_above, reg_word13_written) begin: reg_word13__limit_either3__clamp4_clamp
+    reg_word13_out_of_range = (reg_word13__limit_either3_below || reg_word13__limit_either3_above);
+    if (reg_word13__limit_either3_below) begin
         reg_word13_honoured = 1;
     end
-    else if ((reg_word13_written[32-1:8] != 0)) begin
+    else if (reg_word13__limit_either3_above) begin
         reg_word13_honoured = 255;
     end
     else begin
-        reg_word13_honoured = reg_word13_written[8-1:0];
-        reg_word13_out_of_range = 1'b0;
+        reg_word13_honoured = reg_word13_written;
     end
 end
 
@@ -1663,27 +1994,70 @@ assign reg_word14_shown_wide = {24'h0, reg_word14_shown};
 assign reg_word14_mine_write = (written_addr == 56);
 
 
-always @(reg_word14_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word14_merge_bytes
-    if ((set_strobe && (set_index == 4))) begin
-        reg_word14_written = set_value[32-1:0];
+
+assign reg_word14_merged = ((reg_word14_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+
+
+
+assign reg_word14_set_selected = (set_strobe && (set_index == 4));
+
+
+always @(reg_word14_merged, reg_word14_set_low, reg_word14_set_selected) begin: reg_word14_set_or_bytes
+    if (reg_word14_set_selected) begin
+        reg_word14_written = reg_word14_set_low;
     end
     else begin
-        reg_word14_written = ((reg_word14_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word14_written = reg_word14_merged;
     end
 end
 
 
-always @(reg_word14_written) begin: reg_word14__limit9_clamp_unsigned_power_of_two
-    reg_word14_out_of_range = 1'b1;
-    if (((reg_word14_written[32-1:1] == 0) && (reg_word14_written[1-1:0] < 1))) begin
+
+assign reg_word14_set_low = set_value[8-1:0];
+assign reg_word14_set_zero = (set_value[32-1:8] == 0);
+assign reg_word14_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word14__limit_either4__bounds9_whole = {(!reg_word14_set_zero), reg_word14_set_low};
+
+
+
+assign reg_word14__limit_either4_set_below = ((reg_word14__limit_either4__bounds9_whole[9-1:1] == 0) && (reg_word14__limit_either4__bounds9_whole[1-1:0] < 1));
+assign reg_word14__limit_either4_set_above = (reg_word14__limit_either4__bounds9_whole[9-1:8] != 0);
+
+
+
+assign reg_word14__limit_either4__bounds10_whole = {(!reg_word14_bus_zero), reg_word14_merged};
+
+
+
+assign reg_word14__limit_either4_bus_below = ((reg_word14__limit_either4__bounds10_whole[9-1:1] == 0) && (reg_word14__limit_either4__bounds10_whole[1-1:0] < 1));
+assign reg_word14__limit_either4_bus_above = (reg_word14__limit_either4__bounds10_whole[9-1:8] != 0);
+
+
+always @(reg_word14__limit_either4_set_below, reg_word14_set_selected, reg_word14__limit_either4_bus_above, reg_word14__limit_either4_set_above, reg_word14__limit_either4_bus_below) begin: reg_word14__limit_either4_choose
+    if (reg_word14_set_selected) begin
+        reg_word14__limit_either4_below = reg_word14__limit_either4_set_below;
+        reg_word14__limit_either4_above = reg_word14__limit_either4_set_above;
+    end
+    else begin
+        reg_word14__limit_either4_below = reg_word14__limit_either4_bus_below;
+        reg_word14__limit_either4_above = reg_word14__limit_either4_bus_above;
+    end
+end
+
+
+always @(reg_word14__limit_either4_below, reg_word14__limit_either4_above, reg_word14_written) begin: reg_word14__limit_either4__clamp5_clamp
+    reg_word14_out_of_range = (reg_word14__limit_either4_below || reg_word14__limit_either4_above);
+    if (reg_word14__limit_either4_below) begin
         reg_word14_honoured = 1;
     end
-    else if ((reg_word14_written[32-1:8] != 0)) begin
+    else if (reg_word14__limit_either4_above) begin
         reg_word14_honoured = 255;
     end
     else begin
-        reg_word14_honoured = reg_word14_written[8-1:0];
-        reg_word14_out_of_range = 1'b0;
+        reg_word14_honoured = reg_word14_written;
     end
 end
 
@@ -1729,27 +2103,70 @@ assign reg_word15_shown_wide = {24'h0, reg_word15_shown};
 assign reg_word15_mine_write = (written_addr == 60);
 
 
-always @(reg_word15_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word15_merge_bytes
-    if ((set_strobe && (set_index == 5))) begin
-        reg_word15_written = set_value[32-1:0];
+
+assign reg_word15_merged = ((reg_word15_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+
+
+
+assign reg_word15_set_selected = (set_strobe && (set_index == 5));
+
+
+always @(reg_word15_merged, reg_word15_set_low, reg_word15_set_selected) begin: reg_word15_set_or_bytes
+    if (reg_word15_set_selected) begin
+        reg_word15_written = reg_word15_set_low;
     end
     else begin
-        reg_word15_written = ((reg_word15_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word15_written = reg_word15_merged;
     end
 end
 
 
-always @(reg_word15_written) begin: reg_word15__limit10_clamp_unsigned_power_of_two
-    reg_word15_out_of_range = 1'b1;
-    if (((reg_word15_written[32-1:1] == 0) && (reg_word15_written[1-1:0] < 1))) begin
+
+assign reg_word15_set_low = set_value[8-1:0];
+assign reg_word15_set_zero = (set_value[32-1:8] == 0);
+assign reg_word15_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word15__limit_either5__bounds11_whole = {(!reg_word15_set_zero), reg_word15_set_low};
+
+
+
+assign reg_word15__limit_either5_set_below = ((reg_word15__limit_either5__bounds11_whole[9-1:1] == 0) && (reg_word15__limit_either5__bounds11_whole[1-1:0] < 1));
+assign reg_word15__limit_either5_set_above = (reg_word15__limit_either5__bounds11_whole[9-1:8] != 0);
+
+
+
+assign reg_word15__limit_either5__bounds12_whole = {(!reg_word15_bus_zero), reg_word15_merged};
+
+
+
+assign reg_word15__limit_either5_bus_below = ((reg_word15__limit_either5__bounds12_whole[9-1:1] == 0) && (reg_word15__limit_either5__bounds12_whole[1-1:0] < 1));
+assign reg_word15__limit_either5_bus_above = (reg_word15__limit_either5__bounds12_whole[9-1:8] != 0);
+
+
+always @(reg_word15__limit_either5_set_below, reg_word15_set_selected, reg_word15__limit_either5_bus_above, reg_word15__limit_either5_set_above, reg_word15__limit_either5_bus_below) begin: reg_word15__limit_either5_choose
+    if (reg_word15_set_selected) begin
+        reg_word15__limit_either5_below = reg_word15__limit_either5_set_below;
+        reg_word15__limit_either5_above = reg_word15__limit_either5_set_above;
+    end
+    else begin
+        reg_word15__limit_either5_below = reg_word15__limit_either5_bus_below;
+        reg_word15__limit_either5_above = reg_word15__limit_either5_bus_above;
+    end
+end
+
+
+always @(reg_word15__limit_either5_below, reg_word15__limit_either5_above, reg_word15_written) begin: reg_word15__limit_either5__clamp6_clamp
+    reg_word15_out_of_range = (reg_word15__limit_either5_below || reg_word15__limit_either5_above);
+    if (reg_word15__limit_either5_below) begin
         reg_word15_honoured = 1;
     end
-    else if ((reg_word15_written[32-1:8] != 0)) begin
+    else if (reg_word15__limit_either5_above) begin
         reg_word15_honoured = 255;
     end
     else begin
-        reg_word15_honoured = reg_word15_written[8-1:0];
-        reg_word15_out_of_range = 1'b0;
+        reg_word15_honoured = reg_word15_written;
     end
 end
 
@@ -1795,18 +2212,12 @@ assign reg_word16_shown_wide = {26'h0, reg_word16_shown};
 assign reg_word16_mine_write = (written_addr == 64);
 
 
-always @(reg_word16_shown_wide, reg_word16_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word16_merge_bytes
-    if ((reg_word16_set_mine && (set_index == 0))) begin
-        reg_word16_written = set_value[6-1:0];
-    end
-    else begin
-        reg_word16_written = ((reg_word16_shown_wide[6-1:0] & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
-    end
-end
+
+assign reg_word16_merged = ((reg_word16_shown & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
 
 
 
-assign reg_word16_honoured = reg_word16_written[6-1:0];
+assign reg_word16_honoured = reg_word16_merged;
 
 
 
@@ -1850,27 +2261,70 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 assign reg_word17_mine_write = ((written_addr == 68) || (written_addr == 260));
 
 
-always @(reg_word17_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word17_merge_bytes
-    if ((set_strobe && (set_index == 6))) begin
-        reg_word17_written = set_value[32-1:0];
+
+assign reg_word17_merged = ((reg_word17_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+
+
+
+assign reg_word17_set_selected = (set_strobe && (set_index == 6));
+
+
+always @(reg_word17_merged, reg_word17_set_low, reg_word17_set_selected) begin: reg_word17_set_or_bytes
+    if (reg_word17_set_selected) begin
+        reg_word17_written = reg_word17_set_low;
     end
     else begin
-        reg_word17_written = ((reg_word17_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word17_written = reg_word17_merged;
     end
 end
 
 
-always @(reg_word17_written) begin: reg_word17__limit12_clamp_unsigned_power_of_two
-    reg_word17_out_of_range = 1'b1;
-    if (((reg_word17_written[32-1:1] == 0) && (reg_word17_written[1-1:0] < 1))) begin
+
+assign reg_word17_set_low = set_value[16-1:0];
+assign reg_word17_set_zero = (set_value[32-1:16] == 0);
+assign reg_word17_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word17__limit_either6__bounds13_whole = {(!reg_word17_set_zero), reg_word17_set_low};
+
+
+
+assign reg_word17__limit_either6_set_below = ((reg_word17__limit_either6__bounds13_whole[17-1:1] == 0) && (reg_word17__limit_either6__bounds13_whole[1-1:0] < 1));
+assign reg_word17__limit_either6_set_above = (reg_word17__limit_either6__bounds13_whole[17-1:16] != 0);
+
+
+
+assign reg_word17__limit_either6__bounds14_whole = {(!reg_word17_bus_zero), reg_word17_merged};
+
+
+
+assign reg_word17__limit_either6_bus_below = ((reg_word17__limit_either6__bounds14_whole[17-1:1] == 0) && (reg_word17__limit_either6__bounds14_whole[1-1:0] < 1));
+assign reg_word17__limit_either6_bus_above = (reg_word17__limit_either6__bounds14_whole[17-1:16] != 0);
+
+
+always @(reg_word17__limit_either6_set_below, reg_word17_set_selected, reg_word17__limit_either6_bus_above, reg_word17__limit_either6_set_above, reg_word17__limit_either6_bus_below) begin: reg_word17__limit_either6_choose
+    if (reg_word17_set_selected) begin
+        reg_word17__limit_either6_below = reg_word17__limit_either6_set_below;
+        reg_word17__limit_either6_above = reg_word17__limit_either6_set_above;
+    end
+    else begin
+        reg_word17__limit_either6_below = reg_word17__limit_either6_bus_below;
+        reg_word17__limit_either6_above = reg_word17__limit_either6_bus_above;
+    end
+end
+
+
+always @(reg_word17__limit_either6_below, reg_word17__limit_either6_above, reg_word17_written) begin: reg_word17__limit_either6__clamp7_clamp
+    reg_word17_out_of_range = (reg_word17__limit_either6_below || reg_word17__limit_either6_above);
+    if (reg_word17__limit_either6_below) begin
         reg_word17_honoured = 1;
     end
-    else if ((reg_word17_written[32-1:16] != 0)) begin
+    else if (reg_word17__limit_either6_above) begin
         reg_word17_honoured = 65535;
     end
     else begin
-        reg_word17_honoured = reg_word17_written[16-1:0];
-        reg_word17_out_of_range = 1'b0;
+        reg_word17_honoured = reg_word17_written;
     end
 end
 
@@ -1916,27 +2370,70 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 assign reg_word18_mine_write = ((written_addr == 72) || (written_addr == 324));
 
 
-always @(reg_word18_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word18_merge_bytes
-    if ((set_strobe && (set_index == 7))) begin
-        reg_word18_written = set_value[32-1:0];
+
+assign reg_word18_merged = ((reg_word18_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+
+
+
+assign reg_word18_set_selected = (set_strobe && (set_index == 7));
+
+
+always @(reg_word18_merged, reg_word18_set_low, reg_word18_set_selected) begin: reg_word18_set_or_bytes
+    if (reg_word18_set_selected) begin
+        reg_word18_written = reg_word18_set_low;
     end
     else begin
-        reg_word18_written = ((reg_word18_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word18_written = reg_word18_merged;
     end
 end
 
 
-always @(reg_word18_written) begin: reg_word18__limit13_clamp_unsigned_power_of_two
-    reg_word18_out_of_range = 1'b1;
-    if (((reg_word18_written[32-1:1] == 0) && (reg_word18_written[1-1:0] < 1))) begin
+
+assign reg_word18_set_low = set_value[16-1:0];
+assign reg_word18_set_zero = (set_value[32-1:16] == 0);
+assign reg_word18_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+
+
+
+assign reg_word18__limit_either7__bounds15_whole = {(!reg_word18_set_zero), reg_word18_set_low};
+
+
+
+assign reg_word18__limit_either7_set_below = ((reg_word18__limit_either7__bounds15_whole[17-1:1] == 0) && (reg_word18__limit_either7__bounds15_whole[1-1:0] < 1));
+assign reg_word18__limit_either7_set_above = (reg_word18__limit_either7__bounds15_whole[17-1:16] != 0);
+
+
+
+assign reg_word18__limit_either7__bounds16_whole = {(!reg_word18_bus_zero), reg_word18_merged};
+
+
+
+assign reg_word18__limit_either7_bus_below = ((reg_word18__limit_either7__bounds16_whole[17-1:1] == 0) && (reg_word18__limit_either7__bounds16_whole[1-1:0] < 1));
+assign reg_word18__limit_either7_bus_above = (reg_word18__limit_either7__bounds16_whole[17-1:16] != 0);
+
+
+always @(reg_word18__limit_either7_set_below, reg_word18_set_selected, reg_word18__limit_either7_bus_above, reg_word18__limit_either7_set_above, reg_word18__limit_either7_bus_below) begin: reg_word18__limit_either7_choose
+    if (reg_word18_set_selected) begin
+        reg_word18__limit_either7_below = reg_word18__limit_either7_set_below;
+        reg_word18__limit_either7_above = reg_word18__limit_either7_set_above;
+    end
+    else begin
+        reg_word18__limit_either7_below = reg_word18__limit_either7_bus_below;
+        reg_word18__limit_either7_above = reg_word18__limit_either7_bus_above;
+    end
+end
+
+
+always @(reg_word18__limit_either7_below, reg_word18__limit_either7_above, reg_word18_written) begin: reg_word18__limit_either7__clamp8_clamp
+    reg_word18_out_of_range = (reg_word18__limit_either7_below || reg_word18__limit_either7_above);
+    if (reg_word18__limit_either7_below) begin
         reg_word18_honoured = 1;
     end
-    else if ((reg_word18_written[32-1:16] != 0)) begin
+    else if (reg_word18__limit_either7_above) begin
         reg_word18_honoured = 65535;
     end
     else begin
-        reg_word18_honoured = reg_word18_written[16-1:0];
-        reg_word18_out_of_range = 1'b0;
+        reg_word18_honoured = reg_word18_written;
     end
 end
 
@@ -1983,15 +2480,15 @@ assign reg_word19_mine_write = ((written_addr == 76) || (written_addr == 264));
 
 
 
-assign reg_word19_written = (written_data[32-1:0] & written_mask[32-1:0]);
+assign reg_word19_merged = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
-always @(reg_word19_written) begin: reg_word19__limit14_clamp_signed
-    if (((reg_word19_written[32-1:(24 - 1)] == 0) || (reg_word19_written[32-1:(24 - 1)] == 511))) begin
-        reg_word19_honoured = reg_word19_written[24-1:0];
+always @(reg_word19_zero_above, reg_word19_sign, reg_word19_ones_above, reg_word19_merged) begin: reg_word19__limit6_clamp_signed
+    if (((reg_word19_zero_above && (!reg_word19_merged[(24 - 1)])) || (reg_word19_ones_above && reg_word19_merged[(24 - 1)]))) begin
+        reg_word19_honoured = reg_word19_merged;
         reg_word19_out_of_range = 1'b0;
     end
-    else if (reg_word19_written[31]) begin
+    else if (reg_word19_sign) begin
         reg_word19_honoured = 8388608;
         reg_word19_out_of_range = 1'b1;
     end
@@ -2000,6 +2497,12 @@ always @(reg_word19_written) begin: reg_word19__limit14_clamp_signed
         reg_word19_out_of_range = 1'b1;
     end
 end
+
+
+
+assign reg_word19_zero_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
+assign reg_word19_ones_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 255);
+assign reg_word19_sign = (written_data[31] && written_mask[31]);
 
 
 
@@ -2047,15 +2550,15 @@ assign reg_word20_mine_write = ((written_addr == 80) || (written_addr == 328));
 
 
 
-assign reg_word20_written = (written_data[32-1:0] & written_mask[32-1:0]);
+assign reg_word20_merged = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
-always @(reg_word20_written) begin: reg_word20__limit15_clamp_signed
-    if (((reg_word20_written[32-1:(24 - 1)] == 0) || (reg_word20_written[32-1:(24 - 1)] == 511))) begin
-        reg_word20_honoured = reg_word20_written[24-1:0];
+always @(reg_word20_zero_above, reg_word20_sign, reg_word20_ones_above, reg_word20_merged) begin: reg_word20__limit7_clamp_signed
+    if (((reg_word20_zero_above && (!reg_word20_merged[(24 - 1)])) || (reg_word20_ones_above && reg_word20_merged[(24 - 1)]))) begin
+        reg_word20_honoured = reg_word20_merged;
         reg_word20_out_of_range = 1'b0;
     end
-    else if (reg_word20_written[31]) begin
+    else if (reg_word20_sign) begin
         reg_word20_honoured = 8388608;
         reg_word20_out_of_range = 1'b1;
     end
@@ -2064,6 +2567,12 @@ always @(reg_word20_written) begin: reg_word20__limit15_clamp_signed
         reg_word20_out_of_range = 1'b1;
     end
 end
+
+
+
+assign reg_word20_zero_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
+assign reg_word20_ones_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 255);
+assign reg_word20_sign = (written_data[31] && written_mask[31]);
 
 
 
@@ -2176,18 +2685,12 @@ assign reg_word24_shown_wide = {30'h0, machine_control};
 assign reg_word24_mine_write = (written_addr == 96);
 
 
-always @(reg_word24_shown_wide, reg_word24_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word24_merge_bytes
-    if ((reg_word24_set_mine && (set_index == 0))) begin
-        reg_word24_written = set_value[2-1:0];
-    end
-    else begin
-        reg_word24_written = ((reg_word24_shown_wide[2-1:0] & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
-    end
-end
+
+assign reg_word24_merged = ((machine_control & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
 
 
 
-assign reg_word24_honoured = reg_word24_written[2-1:0];
+assign reg_word24_honoured = reg_word24_merged;
 
 
 
@@ -2278,18 +2781,12 @@ assign reg_word27_shown_wide = {25'h0, reg_word27_shown};
 assign reg_word27_mine_write = (written_addr == 108);
 
 
-always @(reg_word27_shown_wide, reg_word27_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word27_merge_bytes
-    if ((reg_word27_set_mine && (set_index == 0))) begin
-        reg_word27_written = set_value[7-1:0];
-    end
-    else begin
-        reg_word27_written = ((reg_word27_shown_wide[7-1:0] & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
-    end
-end
+
+assign reg_word27_merged = ((reg_word27_shown & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
 
 
 
-assign reg_word27_honoured = reg_word27_written[7-1:0];
+assign reg_word27_honoured = reg_word27_merged;
 
 
 
@@ -2333,29 +2830,35 @@ assign reg_word28_shown_wide = {28'h0, reg_word28_shown};
 assign reg_word28_mine_write = (written_addr == 112);
 
 
-always @(reg_word28_shown_wide, reg_word28_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word28_merge_bytes
-    if ((reg_word28_set_mine && (set_index == 0))) begin
-        reg_word28_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word28_written = ((reg_word28_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word28_merged = ((reg_word28_shown & (~written_mask[4-1:0])) | (written_data[4-1:0] & written_mask[4-1:0]));
 
 
-always @(reg_word28_written) begin: reg_word28__limit18_clamp_unsigned_power_of_two
-    reg_word28_out_of_range = 1'b1;
-    if (((reg_word28_written[32-1:1] == 0) && (reg_word28_written[1-1:0] < 1))) begin
+
+assign reg_word28__limit10__bounds17_whole = {(!reg_word28_zero_above), reg_word28_merged};
+
+
+
+assign reg_word28__limit10_below = ((reg_word28__limit10__bounds17_whole[5-1:1] == 0) && (reg_word28__limit10__bounds17_whole[1-1:0] < 1));
+assign reg_word28__limit10_above = (reg_word28__limit10__bounds17_whole[5-1:4] != 0);
+
+
+always @(reg_word28__limit10_below, reg_word28__limit10_above, reg_word28_merged) begin: reg_word28__limit10__clamp9_clamp
+    reg_word28_out_of_range = (reg_word28__limit10_below || reg_word28__limit10_above);
+    if (reg_word28__limit10_below) begin
         reg_word28_honoured = 1;
     end
-    else if ((reg_word28_written[32-1:4] != 0)) begin
+    else if (reg_word28__limit10_above) begin
         reg_word28_honoured = 15;
     end
     else begin
-        reg_word28_honoured = reg_word28_written[4-1:0];
-        reg_word28_out_of_range = 1'b0;
+        reg_word28_honoured = reg_word28_merged;
     end
 end
+
+
+
+assign reg_word28_zero_above = ((written_data[32-1:4] & written_mask[32-1:4]) == 0);
 
 
 
@@ -2399,29 +2902,35 @@ assign reg_word29_shown_wide = {16'h0, reg_word29_shown};
 assign reg_word29_mine_write = (written_addr == 116);
 
 
-always @(reg_word29_shown_wide, reg_word29_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word29_merge_bytes
-    if ((reg_word29_set_mine && (set_index == 0))) begin
-        reg_word29_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word29_written = ((reg_word29_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word29_merged = ((reg_word29_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word29_written) begin: reg_word29__limit19_clamp_unsigned_power_of_two
-    reg_word29_out_of_range = 1'b1;
-    if (((reg_word29_written[32-1:1] == 0) && (reg_word29_written[1-1:0] < 1))) begin
+
+assign reg_word29__limit11__bounds18_whole = {(!reg_word29_zero_above), reg_word29_merged};
+
+
+
+assign reg_word29__limit11_below = ((reg_word29__limit11__bounds18_whole[17-1:1] == 0) && (reg_word29__limit11__bounds18_whole[1-1:0] < 1));
+assign reg_word29__limit11_above = (reg_word29__limit11__bounds18_whole[17-1:16] != 0);
+
+
+always @(reg_word29__limit11_below, reg_word29__limit11_above, reg_word29_merged) begin: reg_word29__limit11__clamp10_clamp
+    reg_word29_out_of_range = (reg_word29__limit11_below || reg_word29__limit11_above);
+    if (reg_word29__limit11_below) begin
         reg_word29_honoured = 1;
     end
-    else if ((reg_word29_written[32-1:16] != 0)) begin
+    else if (reg_word29__limit11_above) begin
         reg_word29_honoured = 65535;
     end
     else begin
-        reg_word29_honoured = reg_word29_written[16-1:0];
-        reg_word29_out_of_range = 1'b0;
+        reg_word29_honoured = reg_word29_merged;
     end
 end
+
+
+
+assign reg_word29_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
 
 
 
@@ -2466,19 +2975,34 @@ assign reg_word30_mine_write = (written_addr == 120);
 
 
 
-assign reg_word30_written = (written_data[32-1:0] & written_mask[32-1:0]);
+assign reg_word30_merged = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
-always @(reg_word30_written) begin: reg_word30__limit20_clamp_above_power_of_two
-    reg_word30_out_of_range = 1'b1;
-    if ((reg_word30_written[32-1:24] != 0)) begin
+
+assign reg_word30__limit12__bounds19_whole = {(!reg_word30_zero_above), reg_word30_merged};
+
+
+
+assign reg_word30__limit12_below = 1'b0;
+assign reg_word30__limit12_above = (reg_word30__limit12__bounds19_whole[25-1:24] != 0);
+
+
+always @(reg_word30__limit12_below, reg_word30__limit12_above, reg_word30_merged) begin: reg_word30__limit12__clamp11_clamp
+    reg_word30_out_of_range = (reg_word30__limit12_below || reg_word30__limit12_above);
+    if (reg_word30__limit12_below) begin
+        reg_word30_honoured = 0;
+    end
+    else if (reg_word30__limit12_above) begin
         reg_word30_honoured = 16777215;
     end
     else begin
-        reg_word30_honoured = reg_word30_written[24-1:0];
-        reg_word30_out_of_range = 1'b0;
+        reg_word30_honoured = reg_word30_merged;
     end
 end
+
+
+
+assign reg_word30_zero_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
 
 
 
@@ -2526,11 +3050,11 @@ assign reg_word31_mine_write = (written_addr == 124);
 
 
 
-assign reg_word31_written = (written_data[7-1:0] & written_mask[7-1:0]);
+assign reg_word31_merged = (written_data[7-1:0] & written_mask[7-1:0]);
 
 
 
-assign reg_word31_honoured = reg_word31_written[7-1:0];
+assign reg_word31_honoured = reg_word31_merged;
 
 
 
@@ -2599,29 +3123,35 @@ assign reg_word33_shown_wide = {16'h0, reg_word33_shown};
 assign reg_word33_mine_write = (written_addr == 132);
 
 
-always @(reg_word33_shown_wide, reg_word33_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word33_merge_bytes
-    if ((reg_word33_set_mine && (set_index == 0))) begin
-        reg_word33_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word33_written = ((reg_word33_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word33_merged = ((reg_word33_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word33_written) begin: reg_word33__limit22_clamp_unsigned_power_of_two
-    reg_word33_out_of_range = 1'b1;
-    if (((reg_word33_written[32-1:1] == 0) && (reg_word33_written[1-1:0] < 1))) begin
+
+assign reg_word33__limit14__bounds20_whole = {(!reg_word33_zero_above), reg_word33_merged};
+
+
+
+assign reg_word33__limit14_below = ((reg_word33__limit14__bounds20_whole[17-1:1] == 0) && (reg_word33__limit14__bounds20_whole[1-1:0] < 1));
+assign reg_word33__limit14_above = (reg_word33__limit14__bounds20_whole[17-1:16] != 0);
+
+
+always @(reg_word33__limit14_below, reg_word33__limit14_above, reg_word33_merged) begin: reg_word33__limit14__clamp12_clamp
+    reg_word33_out_of_range = (reg_word33__limit14_below || reg_word33__limit14_above);
+    if (reg_word33__limit14_below) begin
         reg_word33_honoured = 1;
     end
-    else if ((reg_word33_written[32-1:16] != 0)) begin
+    else if (reg_word33__limit14_above) begin
         reg_word33_honoured = 65535;
     end
     else begin
-        reg_word33_honoured = reg_word33_written[16-1:0];
-        reg_word33_out_of_range = 1'b0;
+        reg_word33_honoured = reg_word33_merged;
     end
 end
+
+
+
+assign reg_word33_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
 
 
 
@@ -2665,29 +3195,35 @@ assign reg_word34_shown_wide = {16'h0, reg_word34_shown};
 assign reg_word34_mine_write = (written_addr == 136);
 
 
-always @(reg_word34_shown_wide, reg_word34_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word34_merge_bytes
-    if ((reg_word34_set_mine && (set_index == 0))) begin
-        reg_word34_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word34_written = ((reg_word34_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word34_merged = ((reg_word34_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word34_written) begin: reg_word34__limit23_clamp_unsigned_power_of_two
-    reg_word34_out_of_range = 1'b1;
-    if (((reg_word34_written[32-1:1] == 0) && (reg_word34_written[1-1:0] < 1))) begin
+
+assign reg_word34__limit15__bounds21_whole = {(!reg_word34_zero_above), reg_word34_merged};
+
+
+
+assign reg_word34__limit15_below = ((reg_word34__limit15__bounds21_whole[17-1:1] == 0) && (reg_word34__limit15__bounds21_whole[1-1:0] < 1));
+assign reg_word34__limit15_above = (reg_word34__limit15__bounds21_whole[17-1:16] != 0);
+
+
+always @(reg_word34__limit15_below, reg_word34__limit15_above, reg_word34_merged) begin: reg_word34__limit15__clamp13_clamp
+    reg_word34_out_of_range = (reg_word34__limit15_below || reg_word34__limit15_above);
+    if (reg_word34__limit15_below) begin
         reg_word34_honoured = 1;
     end
-    else if ((reg_word34_written[32-1:16] != 0)) begin
+    else if (reg_word34__limit15_above) begin
         reg_word34_honoured = 65535;
     end
     else begin
-        reg_word34_honoured = reg_word34_written[16-1:0];
-        reg_word34_out_of_range = 1'b0;
+        reg_word34_honoured = reg_word34_merged;
     end
 end
+
+
+
+assign reg_word34_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
 
 
 
@@ -2731,26 +3267,35 @@ assign reg_word35_shown_wide = {16'h0, reg_word35_shown};
 assign reg_word35_mine_write = (written_addr == 140);
 
 
-always @(reg_word35_shown_wide, reg_word35_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word35_merge_bytes
-    if ((reg_word35_set_mine && (set_index == 0))) begin
-        reg_word35_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word35_written = ((reg_word35_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word35_merged = ((reg_word35_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
 
 
-always @(reg_word35_written) begin: reg_word35__limit24_clamp_above_power_of_two
-    reg_word35_out_of_range = 1'b1;
-    if ((reg_word35_written[32-1:16] != 0)) begin
+
+assign reg_word35__limit16__bounds22_whole = {(!reg_word35_zero_above), reg_word35_merged};
+
+
+
+assign reg_word35__limit16_below = 1'b0;
+assign reg_word35__limit16_above = (reg_word35__limit16__bounds22_whole[17-1:16] != 0);
+
+
+always @(reg_word35__limit16_below, reg_word35__limit16_above, reg_word35_merged) begin: reg_word35__limit16__clamp14_clamp
+    reg_word35_out_of_range = (reg_word35__limit16_below || reg_word35__limit16_above);
+    if (reg_word35__limit16_below) begin
+        reg_word35_honoured = 0;
+    end
+    else if (reg_word35__limit16_above) begin
         reg_word35_honoured = 65535;
     end
     else begin
-        reg_word35_honoured = reg_word35_written[16-1:0];
-        reg_word35_out_of_range = 1'b0;
+        reg_word35_honoured = reg_word35_merged;
     end
 end
+
+
+
+assign reg_word35_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
 
 
 
@@ -2794,29 +3339,35 @@ assign reg_word36_shown_wide = {9'h0, reg_word36_shown};
 assign reg_word36_mine_write = (written_addr == 144);
 
 
-always @(reg_word36_shown_wide, reg_word36_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word36_merge_bytes
-    if ((reg_word36_set_mine && (set_index == 0))) begin
-        reg_word36_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word36_written = ((reg_word36_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word36_merged = ((reg_word36_shown & (~written_mask[23-1:0])) | (written_data[23-1:0] & written_mask[23-1:0]));
 
 
-always @(reg_word36_written) begin: reg_word36__limit25_clamp_unsigned_power_of_two
-    reg_word36_out_of_range = 1'b1;
-    if (((reg_word36_written[32-1:1] == 0) && (reg_word36_written[1-1:0] < 1))) begin
+
+assign reg_word36__limit17__bounds23_whole = {(!reg_word36_zero_above), reg_word36_merged};
+
+
+
+assign reg_word36__limit17_below = ((reg_word36__limit17__bounds23_whole[24-1:1] == 0) && (reg_word36__limit17__bounds23_whole[1-1:0] < 1));
+assign reg_word36__limit17_above = (reg_word36__limit17__bounds23_whole[24-1:23] != 0);
+
+
+always @(reg_word36__limit17_below, reg_word36__limit17_above, reg_word36_merged) begin: reg_word36__limit17__clamp15_clamp
+    reg_word36_out_of_range = (reg_word36__limit17_below || reg_word36__limit17_above);
+    if (reg_word36__limit17_below) begin
         reg_word36_honoured = 1;
     end
-    else if ((reg_word36_written[32-1:23] != 0)) begin
+    else if (reg_word36__limit17_above) begin
         reg_word36_honoured = 8388607;
     end
     else begin
-        reg_word36_honoured = reg_word36_written[23-1:0];
-        reg_word36_out_of_range = 1'b0;
+        reg_word36_honoured = reg_word36_merged;
     end
 end
+
+
+
+assign reg_word36_zero_above = ((written_data[32-1:23] & written_mask[32-1:23]) == 0);
 
 
 
@@ -2860,27 +3411,70 @@ assign reg_word37_shown_wide = {24'h0, reg_word37_shown};
 assign reg_word37_mine_write = (written_addr == 148);
 
 
-always @(reg_word37_shown_wide, set_strobe, written_mask, set_index, written_data, set_value) begin: reg_word37_merge_bytes
-    if ((set_strobe && (set_index == 8))) begin
-        reg_word37_written = set_value[32-1:0];
+
+assign reg_word37_merged = ((reg_word37_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+
+
+
+assign reg_word37_set_selected = (set_strobe && (set_index == 8));
+
+
+always @(reg_word37_merged, reg_word37_set_low, reg_word37_set_selected) begin: reg_word37_set_or_bytes
+    if (reg_word37_set_selected) begin
+        reg_word37_written = reg_word37_set_low;
     end
     else begin
-        reg_word37_written = ((reg_word37_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
+        reg_word37_written = reg_word37_merged;
     end
 end
 
 
-always @(reg_word37_written) begin: reg_word37__limit26_clamp_unsigned_power_of_two
-    reg_word37_out_of_range = 1'b1;
-    if (((reg_word37_written[32-1:1] == 0) && (reg_word37_written[1-1:0] < 1))) begin
+
+assign reg_word37_set_low = set_value[8-1:0];
+assign reg_word37_set_zero = (set_value[32-1:8] == 0);
+assign reg_word37_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+
+
+
+assign reg_word37__limit_either8__bounds24_whole = {(!reg_word37_set_zero), reg_word37_set_low};
+
+
+
+assign reg_word37__limit_either8_set_below = ((reg_word37__limit_either8__bounds24_whole[9-1:1] == 0) && (reg_word37__limit_either8__bounds24_whole[1-1:0] < 1));
+assign reg_word37__limit_either8_set_above = (reg_word37__limit_either8__bounds24_whole[9-1:8] != 0);
+
+
+
+assign reg_word37__limit_either8__bounds25_whole = {(!reg_word37_bus_zero), reg_word37_merged};
+
+
+
+assign reg_word37__limit_either8_bus_below = ((reg_word37__limit_either8__bounds25_whole[9-1:1] == 0) && (reg_word37__limit_either8__bounds25_whole[1-1:0] < 1));
+assign reg_word37__limit_either8_bus_above = (reg_word37__limit_either8__bounds25_whole[9-1:8] != 0);
+
+
+always @(reg_word37__limit_either8_set_below, reg_word37_set_selected, reg_word37__limit_either8_bus_above, reg_word37__limit_either8_set_above, reg_word37__limit_either8_bus_below) begin: reg_word37__limit_either8_choose
+    if (reg_word37_set_selected) begin
+        reg_word37__limit_either8_below = reg_word37__limit_either8_set_below;
+        reg_word37__limit_either8_above = reg_word37__limit_either8_set_above;
+    end
+    else begin
+        reg_word37__limit_either8_below = reg_word37__limit_either8_bus_below;
+        reg_word37__limit_either8_above = reg_word37__limit_either8_bus_above;
+    end
+end
+
+
+always @(reg_word37__limit_either8_below, reg_word37__limit_either8_above, reg_word37_written) begin: reg_word37__limit_either8__clamp16_clamp
+    reg_word37_out_of_range = (reg_word37__limit_either8_below || reg_word37__limit_either8_above);
+    if (reg_word37__limit_either8_below) begin
         reg_word37_honoured = 1;
     end
-    else if ((reg_word37_written[32-1:8] != 0)) begin
+    else if (reg_word37__limit_either8_above) begin
         reg_word37_honoured = 255;
     end
     else begin
-        reg_word37_honoured = reg_word37_written[8-1:0];
-        reg_word37_out_of_range = 1'b0;
+        reg_word37_honoured = reg_word37_written;
     end
 end
 
@@ -2926,26 +3520,35 @@ assign reg_word38_shown_wide = {30'h0, step_mode};
 assign reg_word38_mine_write = (written_addr == 152);
 
 
-always @(reg_word38_shown_wide, reg_word38_set_mine, written_mask, set_index, written_data, set_value) begin: reg_word38_merge_bytes
-    if ((reg_word38_set_mine && (set_index == 0))) begin
-        reg_word38_written = set_value[32-1:0];
-    end
-    else begin
-        reg_word38_written = ((reg_word38_shown_wide[32-1:0] & (~written_mask[32-1:0])) | (written_data[32-1:0] & written_mask[32-1:0]));
-    end
-end
+
+assign reg_word38_merged = ((step_mode & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
 
 
-always @(reg_word38_written) begin: reg_word38__limit27_clamp_above
-    reg_word38_out_of_range = 1'b1;
-    if (((reg_word38_written[32-1:2] != 0) || (reg_word38_written[2-1:0] > 2))) begin
+
+assign reg_word38__limit18__bounds26_whole = {(!reg_word38_zero_above), reg_word38_merged};
+
+
+
+assign reg_word38__limit18_below = 1'b0;
+assign reg_word38__limit18_above = ((reg_word38__limit18__bounds26_whole[3-1:2] != 0) || (reg_word38__limit18__bounds26_whole[2-1:0] > 2));
+
+
+always @(reg_word38__limit18_below, reg_word38__limit18_above, reg_word38_merged) begin: reg_word38__limit18__clamp17_clamp
+    reg_word38_out_of_range = (reg_word38__limit18_below || reg_word38__limit18_above);
+    if (reg_word38__limit18_below) begin
+        reg_word38_honoured = 0;
+    end
+    else if (reg_word38__limit18_above) begin
         reg_word38_honoured = 2;
     end
     else begin
-        reg_word38_honoured = reg_word38_written[2-1:0];
-        reg_word38_out_of_range = 1'b0;
+        reg_word38_honoured = reg_word38_merged;
     end
 end
+
+
+
+assign reg_word38_zero_above = ((written_data[32-1:2] & written_mask[32-1:2]) == 0);
 
 
 

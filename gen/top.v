@@ -389,21 +389,21 @@ wire card1_card_core1_regs_fifo2_reg_word82_chain_in_clamped;
 wire [1:0] card1_card_core1_regs_fifo2_reg_word83_honoured;
 wire card1_card_core1_regs_fifo2_reg_word83_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word83_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word83_merged;
 wire card1_card_core1_regs_fifo2_reg_word83_mine;
 wire card1_card_core1_regs_fifo2_reg_word83_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word83_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word83_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word83_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word83_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word83_chain_out_clamped;
 wire [3:0] card1_card_core1_regs_fifo2_reg_word84_honoured;
 wire card1_card_core1_regs_fifo2_reg_word84_out_of_range;
 wire [3:0] card1_card_core1_regs_fifo2_reg_word84_shown;
 reg card1_card_core1_regs_fifo2_reg_word84_clamped;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word84_merged;
 wire card1_card_core1_regs_fifo2_reg_word84_mine;
 wire card1_card_core1_regs_fifo2_reg_word84_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word84_shown_wide;
-wire [3:0] card1_card_core1_regs_fifo2_reg_word84_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word84_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word84_chain_out_clamped;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word85_shown;
@@ -415,33 +415,37 @@ wire [9:0] card1_card_core1_regs_fifo2_reg_word86_honoured;
 wire card1_card_core1_regs_fifo2_reg_word86_out_of_range;
 reg [9:0] card1_card_core1_regs_fifo2_reg_word86_shown;
 reg card1_card_core1_regs_fifo2_reg_word86_clamped;
+wire [9:0] card1_card_core1_regs_fifo2_reg_word86_merged;
 wire card1_card_core1_regs_fifo2_reg_word86_mine;
 wire card1_card_core1_regs_fifo2_reg_word86_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word86_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word86_shown_wide;
-reg [9:0] card1_card_core1_regs_fifo2_reg_word86_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word86_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word86_chain_out_clamped;
 wire [9:0] card1_card_core1_regs_fifo2_reg_word87_honoured;
 reg [9:0] card1_card_core1_regs_fifo2_reg_word87_shown;
+wire [9:0] card1_card_core1_regs_fifo2_reg_word87_merged;
 wire card1_card_core1_regs_fifo2_reg_word87_mine;
 wire card1_card_core1_regs_fifo2_reg_word87_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word87_shown_wide;
-wire [9:0] card1_card_core1_regs_fifo2_reg_word87_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word87_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word87_chain_out_clamped;
 reg [9:0] card1_card_core1_regs_fifo2_reg_word87__store59_word_hw;
+wire card1_card_core1_regs_fifo2_reg_word88_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_honoured;
 reg card1_card_core1_regs_fifo2_reg_word88_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word88_shown;
 reg card1_card_core1_regs_fifo2_reg_word88_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word88_merged;
 wire card1_card_core1_regs_fifo2_reg_word88_mine;
 wire card1_card_core1_regs_fifo2_reg_word88_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word88_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word88_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word88_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word88__limit42_below;
+wire card1_card_core1_regs_fifo2_reg_word88__limit42_above;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word88__limit42__bounds54_whole;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word89_shown;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
@@ -460,113 +464,223 @@ wire card1_card_core1_regs_fifo2_reg_word91_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word92_honoured;
 reg card1_card_core1_regs_fifo2_reg_word92_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word92_shown;
+wire card1_card_core1_regs_fifo2_reg_word92_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word92_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word92_merged;
 wire card1_card_core1_regs_fifo2_reg_word92_mine;
 wire card1_card_core1_regs_fifo2_reg_word92_mine_write;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word92_set_low;
+wire card1_card_core1_regs_fifo2_reg_word92_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word92_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word92_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word92_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word92_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word92_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word92_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word92__limit_either18_above;
+reg card1_card_core1_regs_fifo2_reg_word92__limit_either18_below;
+wire card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_above;
+wire card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_below;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds55_whole;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds56_whole;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word93_honoured;
 reg card1_card_core1_regs_fifo2_reg_word93_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word93_shown;
+wire card1_card_core1_regs_fifo2_reg_word93_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word93_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word93_merged;
 wire card1_card_core1_regs_fifo2_reg_word93_mine;
 wire card1_card_core1_regs_fifo2_reg_word93_mine_write;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word93_set_low;
+wire card1_card_core1_regs_fifo2_reg_word93_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word93_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word93_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word93_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word93_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word93_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word93_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word93__limit_either19_above;
+reg card1_card_core1_regs_fifo2_reg_word93__limit_either19_below;
+wire card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_above;
+wire card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_below;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds57_whole;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds58_whole;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word94_honoured;
 reg card1_card_core1_regs_fifo2_reg_word94_out_of_range;
+wire card1_card_core1_regs_fifo2_reg_word94_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word94_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word94_merged;
 wire card1_card_core1_regs_fifo2_reg_word94_mine;
 wire card1_card_core1_regs_fifo2_reg_word94_mine_write;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word94_set_low;
+wire card1_card_core1_regs_fifo2_reg_word94_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word94_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word94_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word94_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word94_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word94_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word94_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word94__limit_either20_above;
+reg card1_card_core1_regs_fifo2_reg_word94__limit_either20_below;
+wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above;
+wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds59_whole;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds60_whole;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
 reg card1_card_core1_regs_fifo2_reg_word95_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word95_shown;
+wire card1_card_core1_regs_fifo2_reg_word95_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word95_clamped;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word95_merged;
 wire card1_card_core1_regs_fifo2_reg_word95_mine;
 wire card1_card_core1_regs_fifo2_reg_word95_mine_write;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word95_set_low;
+wire card1_card_core1_regs_fifo2_reg_word95_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word95_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word95_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word95_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word95_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word95_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word95_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word95__limit_either21_above;
+reg card1_card_core1_regs_fifo2_reg_word95__limit_either21_below;
+wire card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_above;
+wire card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_below;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds61_whole;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds62_whole;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word96_honoured;
 reg card1_card_core1_regs_fifo2_reg_word96_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word96_shown;
+wire card1_card_core1_regs_fifo2_reg_word96_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word96_clamped;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word96_merged;
 wire card1_card_core1_regs_fifo2_reg_word96_mine;
 wire card1_card_core1_regs_fifo2_reg_word96_mine_write;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word96_set_low;
+wire card1_card_core1_regs_fifo2_reg_word96_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word96_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word96_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word96_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word96_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word96_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word96_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word96__limit_either22_above;
+reg card1_card_core1_regs_fifo2_reg_word96__limit_either22_below;
+wire card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_above;
+wire card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_below;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds63_whole;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds64_whole;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word97_honoured;
 reg card1_card_core1_regs_fifo2_reg_word97_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word97_shown;
+wire card1_card_core1_regs_fifo2_reg_word97_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word97_clamped;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word97_merged;
 wire card1_card_core1_regs_fifo2_reg_word97_mine;
 wire card1_card_core1_regs_fifo2_reg_word97_mine_write;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word97_set_low;
+wire card1_card_core1_regs_fifo2_reg_word97_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word97_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word97_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word97_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word97_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word97_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word97_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word97__limit_either23_above;
+reg card1_card_core1_regs_fifo2_reg_word97__limit_either23_below;
+wire card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_above;
+wire card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_below;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds65_whole;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds66_whole;
 wire [5:0] card1_card_core1_regs_fifo2_reg_word98_honoured;
 wire card1_card_core1_regs_fifo2_reg_word98_out_of_range;
 reg [5:0] card1_card_core1_regs_fifo2_reg_word98_shown;
 reg card1_card_core1_regs_fifo2_reg_word98_clamped;
+wire [5:0] card1_card_core1_regs_fifo2_reg_word98_merged;
 wire card1_card_core1_regs_fifo2_reg_word98_mine;
 wire card1_card_core1_regs_fifo2_reg_word98_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word98_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word98_shown_wide;
-reg [5:0] card1_card_core1_regs_fifo2_reg_word98_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word98_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word98_chain_out_clamped;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word99_honoured;
 reg card1_card_core1_regs_fifo2_reg_word99_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word99_shown;
+wire card1_card_core1_regs_fifo2_reg_word99_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word99_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word99_merged;
 wire card1_card_core1_regs_fifo2_reg_word99_mine;
 wire card1_card_core1_regs_fifo2_reg_word99_mine_write;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word99_set_low;
+wire card1_card_core1_regs_fifo2_reg_word99_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word99_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word99_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word99_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word99_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word99_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word99_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word99__limit_either24_above;
+reg card1_card_core1_regs_fifo2_reg_word99__limit_either24_below;
+wire card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_above;
+wire card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_below;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds67_whole;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds68_whole;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word100_honoured;
 reg card1_card_core1_regs_fifo2_reg_word100_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word100_shown;
+wire card1_card_core1_regs_fifo2_reg_word100_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word100_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word100_merged;
 wire card1_card_core1_regs_fifo2_reg_word100_mine;
 wire card1_card_core1_regs_fifo2_reg_word100_mine_write;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word100_set_low;
+wire card1_card_core1_regs_fifo2_reg_word100_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word100_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word100_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word100_written;
+reg [15:0] card1_card_core1_regs_fifo2_reg_word100_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word100_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word100_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word100__limit_either25_above;
+reg card1_card_core1_regs_fifo2_reg_word100__limit_either25_below;
+wire card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_above;
+wire card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_below;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds69_whole;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds70_whole;
+wire card1_card_core1_regs_fifo2_reg_word101_zero_above;
+wire card1_card_core1_regs_fifo2_reg_word101_ones_above;
+wire card1_card_core1_regs_fifo2_reg_word101_sign;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word101_honoured;
 reg card1_card_core1_regs_fifo2_reg_word101_out_of_range;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word101_shown;
 reg card1_card_core1_regs_fifo2_reg_word101_clamped;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word101_merged;
 wire card1_card_core1_regs_fifo2_reg_word101_mine;
 wire card1_card_core1_regs_fifo2_reg_word101_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word101_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word101_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word101_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word101_chain_out_clamped;
 reg card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word101__store70_word_value;
+wire card1_card_core1_regs_fifo2_reg_word102_zero_above;
+wire card1_card_core1_regs_fifo2_reg_word102_ones_above;
+wire card1_card_core1_regs_fifo2_reg_word102_sign;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word102_honoured;
 reg card1_card_core1_regs_fifo2_reg_word102_out_of_range;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word102_shown;
 reg card1_card_core1_regs_fifo2_reg_word102_clamped;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word102_merged;
 wire card1_card_core1_regs_fifo2_reg_word102_mine;
 wire card1_card_core1_regs_fifo2_reg_word102_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word102_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word102_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word102_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word102_chain_out_clamped;
 reg card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe;
@@ -589,11 +703,11 @@ wire card1_card_core1_regs_fifo2_reg_word105_chain_out_clamped;
 wire [1:0] card1_card_core1_regs_fifo2_reg_word106_honoured;
 wire card1_card_core1_regs_fifo2_reg_word106_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word106_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word106_merged;
 wire card1_card_core1_regs_fifo2_reg_word106_mine;
 wire card1_card_core1_regs_fifo2_reg_word106_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word106_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word106_shown_wide;
-reg [1:0] card1_card_core1_regs_fifo2_reg_word106_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word106_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word106_chain_out_clamped;
 reg [19:0] card1_card_core1_regs_fifo2_reg_word107_shown;
@@ -610,54 +724,66 @@ wire [6:0] card1_card_core1_regs_fifo2_reg_word109_honoured;
 wire card1_card_core1_regs_fifo2_reg_word109_out_of_range;
 reg [6:0] card1_card_core1_regs_fifo2_reg_word109_shown;
 reg card1_card_core1_regs_fifo2_reg_word109_clamped;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word109_merged;
 wire card1_card_core1_regs_fifo2_reg_word109_mine;
 wire card1_card_core1_regs_fifo2_reg_word109_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word109_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word109_shown_wide;
-reg [6:0] card1_card_core1_regs_fifo2_reg_word109_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word109_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word109_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word110_zero_above;
 reg [3:0] card1_card_core1_regs_fifo2_reg_word110_honoured;
 reg card1_card_core1_regs_fifo2_reg_word110_out_of_range;
 reg [3:0] card1_card_core1_regs_fifo2_reg_word110_shown;
 reg card1_card_core1_regs_fifo2_reg_word110_clamped;
+wire [3:0] card1_card_core1_regs_fifo2_reg_word110_merged;
 wire card1_card_core1_regs_fifo2_reg_word110_mine;
 wire card1_card_core1_regs_fifo2_reg_word110_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word110_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word110_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word110_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word110_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word110_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word110__limit48_below;
+wire card1_card_core1_regs_fifo2_reg_word110__limit48_above;
+wire [4:0] card1_card_core1_regs_fifo2_reg_word110__limit48__bounds71_whole;
+wire card1_card_core1_regs_fifo2_reg_word111_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word111_honoured;
 reg card1_card_core1_regs_fifo2_reg_word111_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word111_shown;
 reg card1_card_core1_regs_fifo2_reg_word111_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word111_merged;
 wire card1_card_core1_regs_fifo2_reg_word111_mine;
 wire card1_card_core1_regs_fifo2_reg_word111_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word111_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word111_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word111_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word111_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word111_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word111__limit49_below;
+wire card1_card_core1_regs_fifo2_reg_word111__limit49_above;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word111__limit49__bounds72_whole;
+wire card1_card_core1_regs_fifo2_reg_word112_zero_above;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word112_honoured;
 reg card1_card_core1_regs_fifo2_reg_word112_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word112_clamped;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word112_merged;
 wire card1_card_core1_regs_fifo2_reg_word112_mine;
 wire card1_card_core1_regs_fifo2_reg_word112_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word112_shown_wide;
-wire [31:0] card1_card_core1_regs_fifo2_reg_word112_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word112__limit50_below;
+wire card1_card_core1_regs_fifo2_reg_word112__limit50_above;
+wire [24:0] card1_card_core1_regs_fifo2_reg_word112__limit50__bounds73_whole;
 reg card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word112__store76_word_value;
 wire [6:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
 wire card1_card_core1_regs_fifo2_reg_word113_out_of_range;
 reg [6:0] card1_card_core1_regs_fifo2_reg_word113_shown;
 reg card1_card_core1_regs_fifo2_reg_word113_clamped;
+wire [6:0] card1_card_core1_regs_fifo2_reg_word113_merged;
 wire card1_card_core1_regs_fifo2_reg_word113_mine;
 wire card1_card_core1_regs_fifo2_reg_word113_mine_write;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word113_shown_wide;
-wire [6:0] card1_card_core1_regs_fifo2_reg_word113_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word113_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word113_chain_out_clamped;
 reg card1_card_core1_regs_fifo2_reg_word113__store77_word_strobe;
@@ -667,70 +793,103 @@ wire card1_card_core1_regs_fifo2_reg_word114_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word114_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word114_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word114_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word115_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word115_honoured;
 reg card1_card_core1_regs_fifo2_reg_word115_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word115_shown;
 reg card1_card_core1_regs_fifo2_reg_word115_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word115_merged;
 wire card1_card_core1_regs_fifo2_reg_word115_mine;
 wire card1_card_core1_regs_fifo2_reg_word115_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word115_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word115_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word115_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word115_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word115_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word115__limit52_below;
+wire card1_card_core1_regs_fifo2_reg_word115__limit52_above;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word115__limit52__bounds74_whole;
+wire card1_card_core1_regs_fifo2_reg_word116_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word116_honoured;
 reg card1_card_core1_regs_fifo2_reg_word116_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word116_shown;
 reg card1_card_core1_regs_fifo2_reg_word116_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word116_merged;
 wire card1_card_core1_regs_fifo2_reg_word116_mine;
 wire card1_card_core1_regs_fifo2_reg_word116_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word116_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word116_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word116_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word116_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word116_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word116__limit53_below;
+wire card1_card_core1_regs_fifo2_reg_word116__limit53_above;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word116__limit53__bounds75_whole;
+wire card1_card_core1_regs_fifo2_reg_word117_zero_above;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word117_honoured;
 reg card1_card_core1_regs_fifo2_reg_word117_out_of_range;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word117_shown;
 reg card1_card_core1_regs_fifo2_reg_word117_clamped;
+wire [15:0] card1_card_core1_regs_fifo2_reg_word117_merged;
 wire card1_card_core1_regs_fifo2_reg_word117_mine;
 wire card1_card_core1_regs_fifo2_reg_word117_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word117_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word117_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word117_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word117_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word117_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word117__limit54_below;
+wire card1_card_core1_regs_fifo2_reg_word117__limit54_above;
+wire [16:0] card1_card_core1_regs_fifo2_reg_word117__limit54__bounds76_whole;
+wire card1_card_core1_regs_fifo2_reg_word118_zero_above;
 reg [22:0] card1_card_core1_regs_fifo2_reg_word118_honoured;
 reg card1_card_core1_regs_fifo2_reg_word118_out_of_range;
 reg [22:0] card1_card_core1_regs_fifo2_reg_word118_shown;
 reg card1_card_core1_regs_fifo2_reg_word118_clamped;
+wire [22:0] card1_card_core1_regs_fifo2_reg_word118_merged;
 wire card1_card_core1_regs_fifo2_reg_word118_mine;
 wire card1_card_core1_regs_fifo2_reg_word118_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word118_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word118_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word118_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word118_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word118_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word118__limit55_below;
+wire card1_card_core1_regs_fifo2_reg_word118__limit55_above;
+wire [23:0] card1_card_core1_regs_fifo2_reg_word118__limit55__bounds77_whole;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word119_honoured;
 reg card1_card_core1_regs_fifo2_reg_word119_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word119_shown;
+wire card1_card_core1_regs_fifo2_reg_word119_bus_zero;
 reg card1_card_core1_regs_fifo2_reg_word119_clamped;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word119_merged;
 wire card1_card_core1_regs_fifo2_reg_word119_mine;
 wire card1_card_core1_regs_fifo2_reg_word119_mine_write;
+wire [7:0] card1_card_core1_regs_fifo2_reg_word119_set_low;
+wire card1_card_core1_regs_fifo2_reg_word119_set_selected;
+wire card1_card_core1_regs_fifo2_reg_word119_set_zero;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word119_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word119_written;
+reg [7:0] card1_card_core1_regs_fifo2_reg_word119_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word119_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word119_chain_out_clamped;
+reg card1_card_core1_regs_fifo2_reg_word119__limit_either26_above;
+reg card1_card_core1_regs_fifo2_reg_word119__limit_either26_below;
+wire card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_above;
+wire card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_below;
+wire card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_above;
+wire card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_below;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds78_whole;
+wire [8:0] card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds79_whole;
+wire card1_card_core1_regs_fifo2_reg_word120_zero_above;
 reg [1:0] card1_card_core1_regs_fifo2_reg_word120_honoured;
 reg card1_card_core1_regs_fifo2_reg_word120_out_of_range;
 reg card1_card_core1_regs_fifo2_reg_word120_clamped;
+wire [1:0] card1_card_core1_regs_fifo2_reg_word120_merged;
 wire card1_card_core1_regs_fifo2_reg_word120_mine;
 wire card1_card_core1_regs_fifo2_reg_word120_mine_write;
 wire card1_card_core1_regs_fifo2_reg_word120_set_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word120_shown_wide;
-reg [31:0] card1_card_core1_regs_fifo2_reg_word120_written;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word120_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word120_chain_out_clamped;
+wire card1_card_core1_regs_fifo2_reg_word120__limit56_below;
+wire card1_card_core1_regs_fifo2_reg_word120__limit56_above;
+wire [2:0] card1_card_core1_regs_fifo2_reg_word120__limit56__bounds80_whole;
 reg [6:0] card1_card_core1_regs_fifo2_reg_word121_shown;
 wire card1_card_core1_regs_fifo2_reg_word121_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word121_shown_wide;
@@ -3147,38 +3306,38 @@ always @(posedge clock, negedge reset) begin: card1_pci_slave2_pci_config2_confi
                 end
                 'h4: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
-                        card1_pci_slave2_bar0[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                        card1_pci_slave2_bar0[8-1:0] <= (card1_pci_slave2_config_data[8-1:0] & 0);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[1])) begin
-                        card1_pci_slave2_bar0[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                        card1_pci_slave2_bar0[16-1:8] <= (card1_pci_slave2_config_data[16-1:8] & 255);
                     end
                 end
                 'h5: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
-                        card1_pci_slave2_bar1[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                        card1_pci_slave2_bar1[8-1:0] <= (card1_pci_slave2_config_data[8-1:0] & 0);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[1])) begin
-                        card1_pci_slave2_bar1[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                        card1_pci_slave2_bar1[16-1:8] <= (card1_pci_slave2_config_data[16-1:8] & 240);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[2])) begin
-                        card1_pci_slave2_bar1[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
+                        card1_pci_slave2_bar1[24-1:16] <= (card1_pci_slave2_config_data[24-1:16] & 255);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[3])) begin
-                        card1_pci_slave2_bar1[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
+                        card1_pci_slave2_bar1[32-1:24] <= (card1_pci_slave2_config_data[32-1:24] & 255);
                     end
                 end
                 'h6: begin
                     if ((!card1_pci_slave2_config_cbe_n[0])) begin
-                        card1_pci_slave2_bar2[8-1:0] <= card1_pci_slave2_config_data[8-1:0];
+                        card1_pci_slave2_bar2[8-1:0] <= (card1_pci_slave2_config_data[8-1:0] & 0);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[1])) begin
-                        card1_pci_slave2_bar2[16-1:8] <= card1_pci_slave2_config_data[16-1:8];
+                        card1_pci_slave2_bar2[16-1:8] <= (card1_pci_slave2_config_data[16-1:8] & 240);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[2])) begin
-                        card1_pci_slave2_bar2[24-1:16] <= card1_pci_slave2_config_data[24-1:16];
+                        card1_pci_slave2_bar2[24-1:16] <= (card1_pci_slave2_config_data[24-1:16] & 255);
                     end
                     if ((!card1_pci_slave2_config_cbe_n[3])) begin
-                        card1_pci_slave2_bar2[32-1:24] <= card1_pci_slave2_config_data[32-1:24];
+                        card1_pci_slave2_bar2[32-1:24] <= (card1_pci_slave2_config_data[32-1:24] & 255);
                     end
                 end
                 'hf: begin
@@ -3369,18 +3528,12 @@ assign card1_card_core1_regs_fifo2_reg_word83_shown_wide = {30'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_regs_fifo2_written_addr == 4);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word83_shown_wide, card1_card_core1_regs_fifo2_reg_word83_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word83_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word83_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word83_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word83_written = ((card1_card_core1_regs_fifo2_reg_word83_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word83_merged = ((card1_card_core1_regs_fifo2_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word83_honoured = card1_card_core1_regs_fifo2_reg_word83_merged;
 
 
 
@@ -3425,11 +3578,11 @@ assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_written = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word84_merged = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_written[4-1:0];
+assign card1_card_core1_regs_fifo2_reg_word84_honoured = card1_card_core1_regs_fifo2_reg_word84_merged;
 
 
 
@@ -3498,18 +3651,12 @@ assign card1_card_core1_regs_fifo2_reg_word86_shown_wide = {22'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_regs_fifo2_written_addr == 16);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word86_shown_wide, card1_card_core1_regs_fifo2_reg_word86_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word86_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word86_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word86_written = card1_card_core1_regs_fifo2_set_value[10-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word86_written = ((card1_card_core1_regs_fifo2_reg_word86_shown_wide[10-1:0] & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word86_merged = ((card1_card_core1_regs_fifo2_reg_word86_shown & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_written[10-1:0];
+assign card1_card_core1_regs_fifo2_reg_word86_honoured = card1_card_core1_regs_fifo2_reg_word86_merged;
 
 
 
@@ -3554,11 +3701,11 @@ assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_written = (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word87_merged = (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_written[10-1:0];
+assign card1_card_core1_regs_fifo2_reg_word87_honoured = card1_card_core1_regs_fifo2_reg_word87_merged;
 
 
 
@@ -3602,26 +3749,35 @@ assign card1_card_core1_regs_fifo2_reg_word88_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_regs_fifo2_written_addr == 24);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_shown_wide, card1_card_core1_regs_fifo2_reg_word88_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word88_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word88_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word88_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word88_written = ((card1_card_core1_regs_fifo2_reg_word88_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word88_merged = ((card1_card_core1_regs_fifo2_reg_word88_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word88_written) begin: card1_card_core1_regs_fifo2_reg_word88__limit60_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word88_written[32-1:16] != 0)) begin
+
+assign card1_card_core1_regs_fifo2_reg_word88__limit42__bounds54_whole = {(!card1_card_core1_regs_fifo2_reg_word88_zero_above), card1_card_core1_regs_fifo2_reg_word88_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88__limit42_below = 1'b0;
+assign card1_card_core1_regs_fifo2_reg_word88__limit42_above = (card1_card_core1_regs_fifo2_reg_word88__limit42__bounds54_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word88__limit42_below, card1_card_core1_regs_fifo2_reg_word88__limit42_above, card1_card_core1_regs_fifo2_reg_word88_merged) begin: card1_card_core1_regs_fifo2_reg_word88__limit42__clamp36_clamp
+    card1_card_core1_regs_fifo2_reg_word88_out_of_range = (card1_card_core1_regs_fifo2_reg_word88__limit42_below || card1_card_core1_regs_fifo2_reg_word88__limit42_above);
+    if (card1_card_core1_regs_fifo2_reg_word88__limit42_below) begin
+        card1_card_core1_regs_fifo2_reg_word88_honoured = 0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word88__limit42_above) begin
         card1_card_core1_regs_fifo2_reg_word88_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word88_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word88_honoured = card1_card_core1_regs_fifo2_reg_word88_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word88_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
 
 
 
@@ -3731,27 +3887,70 @@ assign card1_card_core1_regs_fifo2_reg_word92_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_regs_fifo2_written_addr == 40);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word92_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word92_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word92_merged = ((card1_card_core1_regs_fifo2_reg_word92_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 0));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word92_merged, card1_card_core1_regs_fifo2_reg_word92_set_low, card1_card_core1_regs_fifo2_reg_word92_set_selected) begin: card1_card_core1_regs_fifo2_reg_word92_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word92_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_reg_word92_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_written = ((card1_card_core1_regs_fifo2_reg_word92_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word92_written = card1_card_core1_regs_fifo2_reg_word92_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit61_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word92_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word92_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+assign card1_card_core1_regs_fifo2_reg_word92_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds55_whole = {(!card1_card_core1_regs_fifo2_reg_word92_set_zero), card1_card_core1_regs_fifo2_reg_word92_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_below = ((card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds55_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds55_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_above = ((card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds55_whole[17-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds55_whole[16-1:0] > 32768));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds56_whole = {(!card1_card_core1_regs_fifo2_reg_word92_bus_zero), card1_card_core1_regs_fifo2_reg_word92_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_below = ((card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds56_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds56_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_above = ((card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds56_whole[17-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word92__limit_either18__bounds56_whole[16-1:0] > 32768));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_below, card1_card_core1_regs_fifo2_reg_word92_set_selected, card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_above, card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_above, card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_below) begin: card1_card_core1_regs_fifo2_reg_word92__limit_either18_choose
+    if (card1_card_core1_regs_fifo2_reg_word92_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word92__limit_either18_below = card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_below;
+        card1_card_core1_regs_fifo2_reg_word92__limit_either18_above = card1_card_core1_regs_fifo2_reg_word92__limit_either18_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word92__limit_either18_below = card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_below;
+        card1_card_core1_regs_fifo2_reg_word92__limit_either18_above = card1_card_core1_regs_fifo2_reg_word92__limit_either18_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word92__limit_either18_below, card1_card_core1_regs_fifo2_reg_word92__limit_either18_above, card1_card_core1_regs_fifo2_reg_word92_written) begin: card1_card_core1_regs_fifo2_reg_word92__limit_either18__clamp37_clamp
+    card1_card_core1_regs_fifo2_reg_word92_out_of_range = (card1_card_core1_regs_fifo2_reg_word92__limit_either18_below || card1_card_core1_regs_fifo2_reg_word92__limit_either18_above);
+    if (card1_card_core1_regs_fifo2_reg_word92__limit_either18_below) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 1;
     end
-    else if (((card1_card_core1_regs_fifo2_reg_word92_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word92_written[16-1:0] > 32768))) begin
+    else if (card1_card_core1_regs_fifo2_reg_word92__limit_either18_above) begin
         card1_card_core1_regs_fifo2_reg_word92_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word92_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word92_honoured = card1_card_core1_regs_fifo2_reg_word92_written;
     end
 end
 
@@ -3797,27 +3996,70 @@ assign card1_card_core1_regs_fifo2_reg_word93_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_regs_fifo2_written_addr == 44);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word93_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word93_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1))) begin
-        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word93_merged = ((card1_card_core1_regs_fifo2_reg_word93_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 1));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93_merged, card1_card_core1_regs_fifo2_reg_word93_set_low, card1_card_core1_regs_fifo2_reg_word93_set_selected) begin: card1_card_core1_regs_fifo2_reg_word93_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word93_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_reg_word93_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_written = ((card1_card_core1_regs_fifo2_reg_word93_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word93_written = card1_card_core1_regs_fifo2_reg_word93_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit62_clamp_unsigned
-    card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word93_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word93_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+assign card1_card_core1_regs_fifo2_reg_word93_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds57_whole = {(!card1_card_core1_regs_fifo2_reg_word93_set_zero), card1_card_core1_regs_fifo2_reg_word93_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_below = ((card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds57_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds57_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_above = ((card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds57_whole[17-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds57_whole[16-1:0] > 32768));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds58_whole = {(!card1_card_core1_regs_fifo2_reg_word93_bus_zero), card1_card_core1_regs_fifo2_reg_word93_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_below = ((card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds58_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds58_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_above = ((card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds58_whole[17-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word93__limit_either19__bounds58_whole[16-1:0] > 32768));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_below, card1_card_core1_regs_fifo2_reg_word93_set_selected, card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_above, card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_above, card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_below) begin: card1_card_core1_regs_fifo2_reg_word93__limit_either19_choose
+    if (card1_card_core1_regs_fifo2_reg_word93_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word93__limit_either19_below = card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_below;
+        card1_card_core1_regs_fifo2_reg_word93__limit_either19_above = card1_card_core1_regs_fifo2_reg_word93__limit_either19_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word93__limit_either19_below = card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_below;
+        card1_card_core1_regs_fifo2_reg_word93__limit_either19_above = card1_card_core1_regs_fifo2_reg_word93__limit_either19_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word93__limit_either19_below, card1_card_core1_regs_fifo2_reg_word93__limit_either19_above, card1_card_core1_regs_fifo2_reg_word93_written) begin: card1_card_core1_regs_fifo2_reg_word93__limit_either19__clamp38_clamp
+    card1_card_core1_regs_fifo2_reg_word93_out_of_range = (card1_card_core1_regs_fifo2_reg_word93__limit_either19_below || card1_card_core1_regs_fifo2_reg_word93__limit_either19_above);
+    if (card1_card_core1_regs_fifo2_reg_word93__limit_either19_below) begin
         card1_card_core1_regs_fifo2_reg_word93_honoured = 1;
     end
-    else if (((card1_card_core1_regs_fifo2_reg_word93_written[32-1:16] != 0) || (card1_card_core1_regs_fifo2_reg_word93_written[16-1:0] > 32768))) begin
+    else if (card1_card_core1_regs_fifo2_reg_word93__limit_either19_above) begin
         card1_card_core1_regs_fifo2_reg_word93_honoured = 32768;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word93_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word93_honoured = card1_card_core1_regs_fifo2_reg_word93_written;
     end
 end
 
@@ -3863,24 +4105,70 @@ assign card1_card_core1_regs_fifo2_reg_word94_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_regs_fifo2_written_addr == 48);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word94_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word94_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2))) begin
-        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word94_merged = ((card1_card_core1_regs_fifo2_ramp_step & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 2));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word94_merged, card1_card_core1_regs_fifo2_reg_word94_set_low, card1_card_core1_regs_fifo2_reg_word94_set_selected) begin: card1_card_core1_regs_fifo2_reg_word94_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word94_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_reg_word94_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_written = ((card1_card_core1_regs_fifo2_reg_word94_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word94_written = card1_card_core1_regs_fifo2_reg_word94_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit63_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word94_written[32-1:16] != 0)) begin
+
+assign card1_card_core1_regs_fifo2_reg_word94_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word94_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+assign card1_card_core1_regs_fifo2_reg_word94_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds59_whole = {(!card1_card_core1_regs_fifo2_reg_word94_set_zero), card1_card_core1_regs_fifo2_reg_word94_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below = 1'b0;
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above = (card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds59_whole[17-1:16] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds60_whole = {(!card1_card_core1_regs_fifo2_reg_word94_bus_zero), card1_card_core1_regs_fifo2_reg_word94_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below = 1'b0;
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above = (card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds60_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below, card1_card_core1_regs_fifo2_reg_word94_set_selected, card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above, card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above, card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below) begin: card1_card_core1_regs_fifo2_reg_word94__limit_either20_choose
+    if (card1_card_core1_regs_fifo2_reg_word94_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word94__limit_either20_below = card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below;
+        card1_card_core1_regs_fifo2_reg_word94__limit_either20_above = card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word94__limit_either20_below = card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below;
+        card1_card_core1_regs_fifo2_reg_word94__limit_either20_above = card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word94__limit_either20_below, card1_card_core1_regs_fifo2_reg_word94__limit_either20_above, card1_card_core1_regs_fifo2_reg_word94_written) begin: card1_card_core1_regs_fifo2_reg_word94__limit_either20__clamp39_clamp
+    card1_card_core1_regs_fifo2_reg_word94_out_of_range = (card1_card_core1_regs_fifo2_reg_word94__limit_either20_below || card1_card_core1_regs_fifo2_reg_word94__limit_either20_above);
+    if (card1_card_core1_regs_fifo2_reg_word94__limit_either20_below) begin
+        card1_card_core1_regs_fifo2_reg_word94_honoured = 0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word94__limit_either20_above) begin
         card1_card_core1_regs_fifo2_reg_word94_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word94_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word94_honoured = card1_card_core1_regs_fifo2_reg_word94_written;
     end
 end
 
@@ -3926,27 +4214,70 @@ assign card1_card_core1_regs_fifo2_reg_word95_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_regs_fifo2_written_addr == 52);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word95_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word95_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3))) begin
-        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word95_merged = ((card1_card_core1_regs_fifo2_reg_word95_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 3));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95_merged, card1_card_core1_regs_fifo2_reg_word95_set_low, card1_card_core1_regs_fifo2_reg_word95_set_selected) begin: card1_card_core1_regs_fifo2_reg_word95_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word95_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_reg_word95_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word95_written = ((card1_card_core1_regs_fifo2_reg_word95_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word95_written = card1_card_core1_regs_fifo2_reg_word95_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit64_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word95_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word95_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
+assign card1_card_core1_regs_fifo2_reg_word95_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+assign card1_card_core1_regs_fifo2_reg_word95_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds61_whole = {(!card1_card_core1_regs_fifo2_reg_word95_set_zero), card1_card_core1_regs_fifo2_reg_word95_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_below = ((card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds61_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds61_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_above = (card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds61_whole[9-1:8] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds62_whole = {(!card1_card_core1_regs_fifo2_reg_word95_bus_zero), card1_card_core1_regs_fifo2_reg_word95_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_below = ((card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds62_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds62_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_above = (card1_card_core1_regs_fifo2_reg_word95__limit_either21__bounds62_whole[9-1:8] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_below, card1_card_core1_regs_fifo2_reg_word95_set_selected, card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_above, card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_above, card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_below) begin: card1_card_core1_regs_fifo2_reg_word95__limit_either21_choose
+    if (card1_card_core1_regs_fifo2_reg_word95_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word95__limit_either21_below = card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_below;
+        card1_card_core1_regs_fifo2_reg_word95__limit_either21_above = card1_card_core1_regs_fifo2_reg_word95__limit_either21_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word95__limit_either21_below = card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_below;
+        card1_card_core1_regs_fifo2_reg_word95__limit_either21_above = card1_card_core1_regs_fifo2_reg_word95__limit_either21_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word95__limit_either21_below, card1_card_core1_regs_fifo2_reg_word95__limit_either21_above, card1_card_core1_regs_fifo2_reg_word95_written) begin: card1_card_core1_regs_fifo2_reg_word95__limit_either21__clamp40_clamp
+    card1_card_core1_regs_fifo2_reg_word95_out_of_range = (card1_card_core1_regs_fifo2_reg_word95__limit_either21_below || card1_card_core1_regs_fifo2_reg_word95__limit_either21_above);
+    if (card1_card_core1_regs_fifo2_reg_word95__limit_either21_below) begin
         card1_card_core1_regs_fifo2_reg_word95_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word95_written[32-1:8] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word95__limit_either21_above) begin
         card1_card_core1_regs_fifo2_reg_word95_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word95_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word95_honoured = card1_card_core1_regs_fifo2_reg_word95_written;
     end
 end
 
@@ -3992,27 +4323,70 @@ assign card1_card_core1_regs_fifo2_reg_word96_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_regs_fifo2_written_addr == 56);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word96_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word96_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4))) begin
-        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word96_merged = ((card1_card_core1_regs_fifo2_reg_word96_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 4));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96_merged, card1_card_core1_regs_fifo2_reg_word96_set_low, card1_card_core1_regs_fifo2_reg_word96_set_selected) begin: card1_card_core1_regs_fifo2_reg_word96_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word96_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_reg_word96_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word96_written = ((card1_card_core1_regs_fifo2_reg_word96_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word96_written = card1_card_core1_regs_fifo2_reg_word96_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit65_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word96_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word96_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
+assign card1_card_core1_regs_fifo2_reg_word96_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+assign card1_card_core1_regs_fifo2_reg_word96_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds63_whole = {(!card1_card_core1_regs_fifo2_reg_word96_set_zero), card1_card_core1_regs_fifo2_reg_word96_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_below = ((card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds63_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds63_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_above = (card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds63_whole[9-1:8] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds64_whole = {(!card1_card_core1_regs_fifo2_reg_word96_bus_zero), card1_card_core1_regs_fifo2_reg_word96_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_below = ((card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds64_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds64_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_above = (card1_card_core1_regs_fifo2_reg_word96__limit_either22__bounds64_whole[9-1:8] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_below, card1_card_core1_regs_fifo2_reg_word96_set_selected, card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_above, card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_above, card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_below) begin: card1_card_core1_regs_fifo2_reg_word96__limit_either22_choose
+    if (card1_card_core1_regs_fifo2_reg_word96_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word96__limit_either22_below = card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_below;
+        card1_card_core1_regs_fifo2_reg_word96__limit_either22_above = card1_card_core1_regs_fifo2_reg_word96__limit_either22_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word96__limit_either22_below = card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_below;
+        card1_card_core1_regs_fifo2_reg_word96__limit_either22_above = card1_card_core1_regs_fifo2_reg_word96__limit_either22_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word96__limit_either22_below, card1_card_core1_regs_fifo2_reg_word96__limit_either22_above, card1_card_core1_regs_fifo2_reg_word96_written) begin: card1_card_core1_regs_fifo2_reg_word96__limit_either22__clamp41_clamp
+    card1_card_core1_regs_fifo2_reg_word96_out_of_range = (card1_card_core1_regs_fifo2_reg_word96__limit_either22_below || card1_card_core1_regs_fifo2_reg_word96__limit_either22_above);
+    if (card1_card_core1_regs_fifo2_reg_word96__limit_either22_below) begin
         card1_card_core1_regs_fifo2_reg_word96_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word96_written[32-1:8] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word96__limit_either22_above) begin
         card1_card_core1_regs_fifo2_reg_word96_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word96_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word96_honoured = card1_card_core1_regs_fifo2_reg_word96_written;
     end
 end
 
@@ -4058,27 +4432,70 @@ assign card1_card_core1_regs_fifo2_reg_word97_shown_wide = {24'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_regs_fifo2_written_addr == 60);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word97_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word97_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5))) begin
-        card1_card_core1_regs_fifo2_reg_word97_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word97_merged = ((card1_card_core1_regs_fifo2_reg_word97_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 5));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97_merged, card1_card_core1_regs_fifo2_reg_word97_set_low, card1_card_core1_regs_fifo2_reg_word97_set_selected) begin: card1_card_core1_regs_fifo2_reg_word97_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word97_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word97_written = card1_card_core1_regs_fifo2_reg_word97_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word97_written = ((card1_card_core1_regs_fifo2_reg_word97_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word97_written = card1_card_core1_regs_fifo2_reg_word97_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit66_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word97_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word97_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word97_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
+assign card1_card_core1_regs_fifo2_reg_word97_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+assign card1_card_core1_regs_fifo2_reg_word97_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds65_whole = {(!card1_card_core1_regs_fifo2_reg_word97_set_zero), card1_card_core1_regs_fifo2_reg_word97_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_below = ((card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds65_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds65_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_above = (card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds65_whole[9-1:8] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds66_whole = {(!card1_card_core1_regs_fifo2_reg_word97_bus_zero), card1_card_core1_regs_fifo2_reg_word97_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_below = ((card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds66_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds66_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_above = (card1_card_core1_regs_fifo2_reg_word97__limit_either23__bounds66_whole[9-1:8] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_below, card1_card_core1_regs_fifo2_reg_word97_set_selected, card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_above, card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_above, card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_below) begin: card1_card_core1_regs_fifo2_reg_word97__limit_either23_choose
+    if (card1_card_core1_regs_fifo2_reg_word97_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word97__limit_either23_below = card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_below;
+        card1_card_core1_regs_fifo2_reg_word97__limit_either23_above = card1_card_core1_regs_fifo2_reg_word97__limit_either23_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word97__limit_either23_below = card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_below;
+        card1_card_core1_regs_fifo2_reg_word97__limit_either23_above = card1_card_core1_regs_fifo2_reg_word97__limit_either23_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word97__limit_either23_below, card1_card_core1_regs_fifo2_reg_word97__limit_either23_above, card1_card_core1_regs_fifo2_reg_word97_written) begin: card1_card_core1_regs_fifo2_reg_word97__limit_either23__clamp42_clamp
+    card1_card_core1_regs_fifo2_reg_word97_out_of_range = (card1_card_core1_regs_fifo2_reg_word97__limit_either23_below || card1_card_core1_regs_fifo2_reg_word97__limit_either23_above);
+    if (card1_card_core1_regs_fifo2_reg_word97__limit_either23_below) begin
         card1_card_core1_regs_fifo2_reg_word97_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word97_written[32-1:8] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word97__limit_either23_above) begin
         card1_card_core1_regs_fifo2_reg_word97_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word97_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word97_honoured = card1_card_core1_regs_fifo2_reg_word97_written;
     end
 end
 
@@ -4124,18 +4541,12 @@ assign card1_card_core1_regs_fifo2_reg_word98_shown_wide = {26'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_regs_fifo2_written_addr == 64);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word98_shown_wide, card1_card_core1_regs_fifo2_reg_word98_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word98_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word98_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word98_written = card1_card_core1_regs_fifo2_set_value[6-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word98_written = ((card1_card_core1_regs_fifo2_reg_word98_shown_wide[6-1:0] & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word98_merged = ((card1_card_core1_regs_fifo2_reg_word98_shown & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_written[6-1:0];
+assign card1_card_core1_regs_fifo2_reg_word98_honoured = card1_card_core1_regs_fifo2_reg_word98_merged;
 
 
 
@@ -4179,27 +4590,70 @@ assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {16'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word99_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6))) begin
-        card1_card_core1_regs_fifo2_reg_word99_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word99_merged = ((card1_card_core1_regs_fifo2_reg_word99_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 6));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99_merged, card1_card_core1_regs_fifo2_reg_word99_set_low, card1_card_core1_regs_fifo2_reg_word99_set_selected) begin: card1_card_core1_regs_fifo2_reg_word99_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word99_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word99_written = card1_card_core1_regs_fifo2_reg_word99_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word99_written = ((card1_card_core1_regs_fifo2_reg_word99_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word99_written = card1_card_core1_regs_fifo2_reg_word99_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word99_written) begin: card1_card_core1_regs_fifo2_reg_word99__limit68_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word99_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word99_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word99_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word99_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word99_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+assign card1_card_core1_regs_fifo2_reg_word99_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds67_whole = {(!card1_card_core1_regs_fifo2_reg_word99_set_zero), card1_card_core1_regs_fifo2_reg_word99_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_below = ((card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds67_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds67_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_above = (card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds67_whole[17-1:16] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds68_whole = {(!card1_card_core1_regs_fifo2_reg_word99_bus_zero), card1_card_core1_regs_fifo2_reg_word99_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_below = ((card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds68_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds68_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_above = (card1_card_core1_regs_fifo2_reg_word99__limit_either24__bounds68_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_below, card1_card_core1_regs_fifo2_reg_word99_set_selected, card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_above, card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_above, card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_below) begin: card1_card_core1_regs_fifo2_reg_word99__limit_either24_choose
+    if (card1_card_core1_regs_fifo2_reg_word99_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word99__limit_either24_below = card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_below;
+        card1_card_core1_regs_fifo2_reg_word99__limit_either24_above = card1_card_core1_regs_fifo2_reg_word99__limit_either24_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word99__limit_either24_below = card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_below;
+        card1_card_core1_regs_fifo2_reg_word99__limit_either24_above = card1_card_core1_regs_fifo2_reg_word99__limit_either24_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word99__limit_either24_below, card1_card_core1_regs_fifo2_reg_word99__limit_either24_above, card1_card_core1_regs_fifo2_reg_word99_written) begin: card1_card_core1_regs_fifo2_reg_word99__limit_either24__clamp43_clamp
+    card1_card_core1_regs_fifo2_reg_word99_out_of_range = (card1_card_core1_regs_fifo2_reg_word99__limit_either24_below || card1_card_core1_regs_fifo2_reg_word99__limit_either24_above);
+    if (card1_card_core1_regs_fifo2_reg_word99__limit_either24_below) begin
         card1_card_core1_regs_fifo2_reg_word99_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word99_written[32-1:16] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word99__limit_either24_above) begin
         card1_card_core1_regs_fifo2_reg_word99_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word99_honoured = card1_card_core1_regs_fifo2_reg_word99_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word99_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word99_honoured = card1_card_core1_regs_fifo2_reg_word99_written;
     end
 end
 
@@ -4245,27 +4699,70 @@ assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word100_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7))) begin
-        card1_card_core1_regs_fifo2_reg_word100_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word100_merged = ((card1_card_core1_regs_fifo2_reg_word100_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 7));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100_merged, card1_card_core1_regs_fifo2_reg_word100_set_low, card1_card_core1_regs_fifo2_reg_word100_set_selected) begin: card1_card_core1_regs_fifo2_reg_word100_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word100_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word100_written = card1_card_core1_regs_fifo2_reg_word100_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word100_written = ((card1_card_core1_regs_fifo2_reg_word100_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word100_written = card1_card_core1_regs_fifo2_reg_word100_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word100_written) begin: card1_card_core1_regs_fifo2_reg_word100__limit69_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word100_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word100_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word100_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word100_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
+assign card1_card_core1_regs_fifo2_reg_word100_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
+assign card1_card_core1_regs_fifo2_reg_word100_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds69_whole = {(!card1_card_core1_regs_fifo2_reg_word100_set_zero), card1_card_core1_regs_fifo2_reg_word100_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_below = ((card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds69_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds69_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_above = (card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds69_whole[17-1:16] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds70_whole = {(!card1_card_core1_regs_fifo2_reg_word100_bus_zero), card1_card_core1_regs_fifo2_reg_word100_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_below = ((card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds70_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds70_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_above = (card1_card_core1_regs_fifo2_reg_word100__limit_either25__bounds70_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_below, card1_card_core1_regs_fifo2_reg_word100_set_selected, card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_above, card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_above, card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_below) begin: card1_card_core1_regs_fifo2_reg_word100__limit_either25_choose
+    if (card1_card_core1_regs_fifo2_reg_word100_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word100__limit_either25_below = card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_below;
+        card1_card_core1_regs_fifo2_reg_word100__limit_either25_above = card1_card_core1_regs_fifo2_reg_word100__limit_either25_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word100__limit_either25_below = card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_below;
+        card1_card_core1_regs_fifo2_reg_word100__limit_either25_above = card1_card_core1_regs_fifo2_reg_word100__limit_either25_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word100__limit_either25_below, card1_card_core1_regs_fifo2_reg_word100__limit_either25_above, card1_card_core1_regs_fifo2_reg_word100_written) begin: card1_card_core1_regs_fifo2_reg_word100__limit_either25__clamp44_clamp
+    card1_card_core1_regs_fifo2_reg_word100_out_of_range = (card1_card_core1_regs_fifo2_reg_word100__limit_either25_below || card1_card_core1_regs_fifo2_reg_word100__limit_either25_above);
+    if (card1_card_core1_regs_fifo2_reg_word100__limit_either25_below) begin
         card1_card_core1_regs_fifo2_reg_word100_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word100_written[32-1:16] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word100__limit_either25_above) begin
         card1_card_core1_regs_fifo2_reg_word100_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word100_honoured = card1_card_core1_regs_fifo2_reg_word100_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word100_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word100_honoured = card1_card_core1_regs_fifo2_reg_word100_written;
     end
 end
 
@@ -4312,15 +4809,15 @@ assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word101_merged = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word101_written) begin: card1_card_core1_regs_fifo2_reg_word101__limit70_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word101_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word101_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_written[24-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word101_zero_above, card1_card_core1_regs_fifo2_reg_word101_sign, card1_card_core1_regs_fifo2_reg_word101_ones_above, card1_card_core1_regs_fifo2_reg_word101_merged) begin: card1_card_core1_regs_fifo2_reg_word101__limit44_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word101_zero_above && (!card1_card_core1_regs_fifo2_reg_word101_merged[(24 - 1)])) || (card1_card_core1_regs_fifo2_reg_word101_ones_above && card1_card_core1_regs_fifo2_reg_word101_merged[(24 - 1)]))) begin
+        card1_card_core1_regs_fifo2_reg_word101_honoured = card1_card_core1_regs_fifo2_reg_word101_merged;
         card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b0;
     end
-    else if (card1_card_core1_regs_fifo2_reg_word101_written[31]) begin
+    else if (card1_card_core1_regs_fifo2_reg_word101_sign) begin
         card1_card_core1_regs_fifo2_reg_word101_honoured = 8388608;
         card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b1;
     end
@@ -4329,6 +4826,12 @@ always @(card1_card_core1_regs_fifo2_reg_word101_written) begin: card1_card_core
         card1_card_core1_regs_fifo2_reg_word101_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word101_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word101_ones_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 255);
+assign card1_card_core1_regs_fifo2_reg_word101_sign = (card1_card_core1_regs_fifo2_written_data[31] && card1_card_core1_regs_fifo2_written_mask[31]);
 
 
 
@@ -4376,15 +4879,15 @@ assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word102_merged = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core1_regs_fifo2_reg_word102__limit71_clamp_signed
-    if (((card1_card_core1_regs_fifo2_reg_word102_written[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_reg_word102_written[32-1:(24 - 1)] == 511))) begin
-        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_written[24-1:0];
+always @(card1_card_core1_regs_fifo2_reg_word102_zero_above, card1_card_core1_regs_fifo2_reg_word102_sign, card1_card_core1_regs_fifo2_reg_word102_ones_above, card1_card_core1_regs_fifo2_reg_word102_merged) begin: card1_card_core1_regs_fifo2_reg_word102__limit45_clamp_signed
+    if (((card1_card_core1_regs_fifo2_reg_word102_zero_above && (!card1_card_core1_regs_fifo2_reg_word102_merged[(24 - 1)])) || (card1_card_core1_regs_fifo2_reg_word102_ones_above && card1_card_core1_regs_fifo2_reg_word102_merged[(24 - 1)]))) begin
+        card1_card_core1_regs_fifo2_reg_word102_honoured = card1_card_core1_regs_fifo2_reg_word102_merged;
         card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b0;
     end
-    else if (card1_card_core1_regs_fifo2_reg_word102_written[31]) begin
+    else if (card1_card_core1_regs_fifo2_reg_word102_sign) begin
         card1_card_core1_regs_fifo2_reg_word102_honoured = 8388608;
         card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
     end
@@ -4393,6 +4896,12 @@ always @(card1_card_core1_regs_fifo2_reg_word102_written) begin: card1_card_core
         card1_card_core1_regs_fifo2_reg_word102_out_of_range = 1'b1;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word102_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word102_ones_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 255);
+assign card1_card_core1_regs_fifo2_reg_word102_sign = (card1_card_core1_regs_fifo2_written_data[31] && card1_card_core1_regs_fifo2_written_mask[31]);
 
 
 
@@ -4505,18 +5014,12 @@ assign card1_card_core1_regs_fifo2_reg_word106_shown_wide = {30'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_regs_fifo2_written_addr == 96);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word106_shown_wide, card1_card_core1_regs_fifo2_reg_word106_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word106_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word106_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word106_written = card1_card_core1_regs_fifo2_set_value[2-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word106_written = ((card1_card_core1_regs_fifo2_reg_word106_shown_wide[2-1:0] & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word106_merged = ((card1_card_core1_regs_fifo2_machine_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_written[2-1:0];
+assign card1_card_core1_regs_fifo2_reg_word106_honoured = card1_card_core1_regs_fifo2_reg_word106_merged;
 
 
 
@@ -4607,18 +5110,12 @@ assign card1_card_core1_regs_fifo2_reg_word109_shown_wide = {25'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_regs_fifo2_written_addr == 108);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word109_shown_wide, card1_card_core1_regs_fifo2_reg_word109_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word109_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word109_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word109_written = card1_card_core1_regs_fifo2_set_value[7-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word109_written = ((card1_card_core1_regs_fifo2_reg_word109_shown_wide[7-1:0] & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word109_merged = ((card1_card_core1_regs_fifo2_reg_word109_shown & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_written[7-1:0];
+assign card1_card_core1_regs_fifo2_reg_word109_honoured = card1_card_core1_regs_fifo2_reg_word109_merged;
 
 
 
@@ -4662,29 +5159,35 @@ assign card1_card_core1_regs_fifo2_reg_word110_shown_wide = {28'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_regs_fifo2_written_addr == 112);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_shown_wide, card1_card_core1_regs_fifo2_reg_word110_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word110_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word110_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word110_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word110_written = ((card1_card_core1_regs_fifo2_reg_word110_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word110_merged = ((card1_card_core1_regs_fifo2_reg_word110_shown & (~card1_card_core1_regs_fifo2_written_mask[4-1:0])) | (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word110_written) begin: card1_card_core1_regs_fifo2_reg_word110__limit74_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word110_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word110__limit48__bounds71_whole = {(!card1_card_core1_regs_fifo2_reg_word110_zero_above), card1_card_core1_regs_fifo2_reg_word110_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110__limit48_below = ((card1_card_core1_regs_fifo2_reg_word110__limit48__bounds71_whole[5-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word110__limit48__bounds71_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word110__limit48_above = (card1_card_core1_regs_fifo2_reg_word110__limit48__bounds71_whole[5-1:4] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word110__limit48_below, card1_card_core1_regs_fifo2_reg_word110__limit48_above, card1_card_core1_regs_fifo2_reg_word110_merged) begin: card1_card_core1_regs_fifo2_reg_word110__limit48__clamp45_clamp
+    card1_card_core1_regs_fifo2_reg_word110_out_of_range = (card1_card_core1_regs_fifo2_reg_word110__limit48_below || card1_card_core1_regs_fifo2_reg_word110__limit48_above);
+    if (card1_card_core1_regs_fifo2_reg_word110__limit48_below) begin
         card1_card_core1_regs_fifo2_reg_word110_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word110_written[32-1:4] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word110__limit48_above) begin
         card1_card_core1_regs_fifo2_reg_word110_honoured = 15;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_written[4-1:0];
-        card1_card_core1_regs_fifo2_reg_word110_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word110_honoured = card1_card_core1_regs_fifo2_reg_word110_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word110_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:4] & card1_card_core1_regs_fifo2_written_mask[32-1:4]) == 0);
 
 
 
@@ -4728,29 +5231,35 @@ assign card1_card_core1_regs_fifo2_reg_word111_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_regs_fifo2_written_addr == 116);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word111_shown_wide, card1_card_core1_regs_fifo2_reg_word111_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word111_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word111_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word111_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word111_written = ((card1_card_core1_regs_fifo2_reg_word111_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word111_merged = ((card1_card_core1_regs_fifo2_reg_word111_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word111_written) begin: card1_card_core1_regs_fifo2_reg_word111__limit75_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word111_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word111__limit49__bounds72_whole = {(!card1_card_core1_regs_fifo2_reg_word111_zero_above), card1_card_core1_regs_fifo2_reg_word111_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111__limit49_below = ((card1_card_core1_regs_fifo2_reg_word111__limit49__bounds72_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word111__limit49__bounds72_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word111__limit49_above = (card1_card_core1_regs_fifo2_reg_word111__limit49__bounds72_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word111__limit49_below, card1_card_core1_regs_fifo2_reg_word111__limit49_above, card1_card_core1_regs_fifo2_reg_word111_merged) begin: card1_card_core1_regs_fifo2_reg_word111__limit49__clamp46_clamp
+    card1_card_core1_regs_fifo2_reg_word111_out_of_range = (card1_card_core1_regs_fifo2_reg_word111__limit49_below || card1_card_core1_regs_fifo2_reg_word111__limit49_above);
+    if (card1_card_core1_regs_fifo2_reg_word111__limit49_below) begin
         card1_card_core1_regs_fifo2_reg_word111_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word111_written[32-1:16] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word111__limit49_above) begin
         card1_card_core1_regs_fifo2_reg_word111_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word111_honoured = card1_card_core1_regs_fifo2_reg_word111_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word111_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word111_honoured = card1_card_core1_regs_fifo2_reg_word111_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word111_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
 
 
 
@@ -4795,19 +5304,34 @@ assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_written = (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word112_merged = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word112_written) begin: card1_card_core1_regs_fifo2_reg_word112__limit76_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word112_written[32-1:24] != 0)) begin
+
+assign card1_card_core1_regs_fifo2_reg_word112__limit50__bounds73_whole = {(!card1_card_core1_regs_fifo2_reg_word112_zero_above), card1_card_core1_regs_fifo2_reg_word112_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112__limit50_below = 1'b0;
+assign card1_card_core1_regs_fifo2_reg_word112__limit50_above = (card1_card_core1_regs_fifo2_reg_word112__limit50__bounds73_whole[25-1:24] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word112__limit50_below, card1_card_core1_regs_fifo2_reg_word112__limit50_above, card1_card_core1_regs_fifo2_reg_word112_merged) begin: card1_card_core1_regs_fifo2_reg_word112__limit50__clamp47_clamp
+    card1_card_core1_regs_fifo2_reg_word112_out_of_range = (card1_card_core1_regs_fifo2_reg_word112__limit50_below || card1_card_core1_regs_fifo2_reg_word112__limit50_above);
+    if (card1_card_core1_regs_fifo2_reg_word112__limit50_below) begin
+        card1_card_core1_regs_fifo2_reg_word112_honoured = 0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word112__limit50_above) begin
         card1_card_core1_regs_fifo2_reg_word112_honoured = 16777215;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_written[24-1:0];
-        card1_card_core1_regs_fifo2_reg_word112_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word112_honoured = card1_card_core1_regs_fifo2_reg_word112_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word112_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
 
 
 
@@ -4855,11 +5379,11 @@ assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_written = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word113_merged = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_written[7-1:0];
+assign card1_card_core1_regs_fifo2_reg_word113_honoured = card1_card_core1_regs_fifo2_reg_word113_merged;
 
 
 
@@ -4928,29 +5452,35 @@ assign card1_card_core1_regs_fifo2_reg_word115_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_regs_fifo2_written_addr == 132);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word115_shown_wide, card1_card_core1_regs_fifo2_reg_word115_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word115_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word115_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word115_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word115_written = ((card1_card_core1_regs_fifo2_reg_word115_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word115_merged = ((card1_card_core1_regs_fifo2_reg_word115_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word115_written) begin: card1_card_core1_regs_fifo2_reg_word115__limit78_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word115_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word115__limit52__bounds74_whole = {(!card1_card_core1_regs_fifo2_reg_word115_zero_above), card1_card_core1_regs_fifo2_reg_word115_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115__limit52_below = ((card1_card_core1_regs_fifo2_reg_word115__limit52__bounds74_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word115__limit52__bounds74_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word115__limit52_above = (card1_card_core1_regs_fifo2_reg_word115__limit52__bounds74_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word115__limit52_below, card1_card_core1_regs_fifo2_reg_word115__limit52_above, card1_card_core1_regs_fifo2_reg_word115_merged) begin: card1_card_core1_regs_fifo2_reg_word115__limit52__clamp48_clamp
+    card1_card_core1_regs_fifo2_reg_word115_out_of_range = (card1_card_core1_regs_fifo2_reg_word115__limit52_below || card1_card_core1_regs_fifo2_reg_word115__limit52_above);
+    if (card1_card_core1_regs_fifo2_reg_word115__limit52_below) begin
         card1_card_core1_regs_fifo2_reg_word115_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word115_written[32-1:16] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word115__limit52_above) begin
         card1_card_core1_regs_fifo2_reg_word115_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word115_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word115_honoured = card1_card_core1_regs_fifo2_reg_word115_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word115_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
 
 
 
@@ -4994,29 +5524,35 @@ assign card1_card_core1_regs_fifo2_reg_word116_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_regs_fifo2_written_addr == 136);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word116_shown_wide, card1_card_core1_regs_fifo2_reg_word116_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word116_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word116_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word116_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word116_written = ((card1_card_core1_regs_fifo2_reg_word116_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word116_merged = ((card1_card_core1_regs_fifo2_reg_word116_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word116_written) begin: card1_card_core1_regs_fifo2_reg_word116__limit79_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word116_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word116_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word116__limit53__bounds75_whole = {(!card1_card_core1_regs_fifo2_reg_word116_zero_above), card1_card_core1_regs_fifo2_reg_word116_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116__limit53_below = ((card1_card_core1_regs_fifo2_reg_word116__limit53__bounds75_whole[17-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word116__limit53__bounds75_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word116__limit53_above = (card1_card_core1_regs_fifo2_reg_word116__limit53__bounds75_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word116__limit53_below, card1_card_core1_regs_fifo2_reg_word116__limit53_above, card1_card_core1_regs_fifo2_reg_word116_merged) begin: card1_card_core1_regs_fifo2_reg_word116__limit53__clamp49_clamp
+    card1_card_core1_regs_fifo2_reg_word116_out_of_range = (card1_card_core1_regs_fifo2_reg_word116__limit53_below || card1_card_core1_regs_fifo2_reg_word116__limit53_above);
+    if (card1_card_core1_regs_fifo2_reg_word116__limit53_below) begin
         card1_card_core1_regs_fifo2_reg_word116_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word116_written[32-1:16] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word116__limit53_above) begin
         card1_card_core1_regs_fifo2_reg_word116_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word116_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word116_honoured = card1_card_core1_regs_fifo2_reg_word116_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word116_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
 
 
 
@@ -5060,26 +5596,35 @@ assign card1_card_core1_regs_fifo2_reg_word117_shown_wide = {16'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word117_mine_write = (card1_card_core1_regs_fifo2_written_addr == 140);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word117_shown_wide, card1_card_core1_regs_fifo2_reg_word117_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word117_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word117_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word117_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word117_written = ((card1_card_core1_regs_fifo2_reg_word117_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word117_merged = ((card1_card_core1_regs_fifo2_reg_word117_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word117_written) begin: card1_card_core1_regs_fifo2_reg_word117__limit80_clamp_above_power_of_two
-    card1_card_core1_regs_fifo2_reg_word117_out_of_range = 1'b1;
-    if ((card1_card_core1_regs_fifo2_reg_word117_written[32-1:16] != 0)) begin
+
+assign card1_card_core1_regs_fifo2_reg_word117__limit54__bounds76_whole = {(!card1_card_core1_regs_fifo2_reg_word117_zero_above), card1_card_core1_regs_fifo2_reg_word117_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117__limit54_below = 1'b0;
+assign card1_card_core1_regs_fifo2_reg_word117__limit54_above = (card1_card_core1_regs_fifo2_reg_word117__limit54__bounds76_whole[17-1:16] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word117__limit54_below, card1_card_core1_regs_fifo2_reg_word117__limit54_above, card1_card_core1_regs_fifo2_reg_word117_merged) begin: card1_card_core1_regs_fifo2_reg_word117__limit54__clamp50_clamp
+    card1_card_core1_regs_fifo2_reg_word117_out_of_range = (card1_card_core1_regs_fifo2_reg_word117__limit54_below || card1_card_core1_regs_fifo2_reg_word117__limit54_above);
+    if (card1_card_core1_regs_fifo2_reg_word117__limit54_below) begin
+        card1_card_core1_regs_fifo2_reg_word117_honoured = 0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word117__limit54_above) begin
         card1_card_core1_regs_fifo2_reg_word117_honoured = 65535;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word117_honoured = card1_card_core1_regs_fifo2_reg_word117_written[16-1:0];
-        card1_card_core1_regs_fifo2_reg_word117_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word117_honoured = card1_card_core1_regs_fifo2_reg_word117_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word117_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
 
 
 
@@ -5123,29 +5668,35 @@ assign card1_card_core1_regs_fifo2_reg_word118_shown_wide = {9'h0, card1_card_co
 assign card1_card_core1_regs_fifo2_reg_word118_mine_write = (card1_card_core1_regs_fifo2_written_addr == 144);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word118_shown_wide, card1_card_core1_regs_fifo2_reg_word118_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word118_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word118_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word118_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word118_written = ((card1_card_core1_regs_fifo2_reg_word118_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word118_merged = ((card1_card_core1_regs_fifo2_reg_word118_shown & (~card1_card_core1_regs_fifo2_written_mask[23-1:0])) | (card1_card_core1_regs_fifo2_written_data[23-1:0] & card1_card_core1_regs_fifo2_written_mask[23-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word118_written) begin: card1_card_core1_regs_fifo2_reg_word118__limit81_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word118_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word118_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word118_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word118__limit55__bounds77_whole = {(!card1_card_core1_regs_fifo2_reg_word118_zero_above), card1_card_core1_regs_fifo2_reg_word118_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118__limit55_below = ((card1_card_core1_regs_fifo2_reg_word118__limit55__bounds77_whole[24-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word118__limit55__bounds77_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word118__limit55_above = (card1_card_core1_regs_fifo2_reg_word118__limit55__bounds77_whole[24-1:23] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word118__limit55_below, card1_card_core1_regs_fifo2_reg_word118__limit55_above, card1_card_core1_regs_fifo2_reg_word118_merged) begin: card1_card_core1_regs_fifo2_reg_word118__limit55__clamp51_clamp
+    card1_card_core1_regs_fifo2_reg_word118_out_of_range = (card1_card_core1_regs_fifo2_reg_word118__limit55_below || card1_card_core1_regs_fifo2_reg_word118__limit55_above);
+    if (card1_card_core1_regs_fifo2_reg_word118__limit55_below) begin
         card1_card_core1_regs_fifo2_reg_word118_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word118_written[32-1:23] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word118__limit55_above) begin
         card1_card_core1_regs_fifo2_reg_word118_honoured = 8388607;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word118_honoured = card1_card_core1_regs_fifo2_reg_word118_written[23-1:0];
-        card1_card_core1_regs_fifo2_reg_word118_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word118_honoured = card1_card_core1_regs_fifo2_reg_word118_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word118_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:23] & card1_card_core1_regs_fifo2_written_mask[32-1:23]) == 0);
 
 
 
@@ -5189,27 +5740,70 @@ assign card1_card_core1_regs_fifo2_reg_word119_shown_wide = {24'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word119_mine_write = (card1_card_core1_regs_fifo2_written_addr == 148);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word119_shown_wide, card1_card_core1_regs_fifo2_set_strobe, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word119_merge_bytes
-    if ((card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8))) begin
-        card1_card_core1_regs_fifo2_reg_word119_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
+
+assign card1_card_core1_regs_fifo2_reg_word119_merged = ((card1_card_core1_regs_fifo2_reg_word119_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119_set_selected = (card1_card_core1_regs_fifo2_set_strobe && (card1_card_core1_regs_fifo2_set_index == 8));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119_merged, card1_card_core1_regs_fifo2_reg_word119_set_low, card1_card_core1_regs_fifo2_reg_word119_set_selected) begin: card1_card_core1_regs_fifo2_reg_word119_set_or_bytes
+    if (card1_card_core1_regs_fifo2_reg_word119_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word119_written = card1_card_core1_regs_fifo2_reg_word119_set_low;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word119_written = ((card1_card_core1_regs_fifo2_reg_word119_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
+        card1_card_core1_regs_fifo2_reg_word119_written = card1_card_core1_regs_fifo2_reg_word119_merged;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_reg_word119_written) begin: card1_card_core1_regs_fifo2_reg_word119__limit82_clamp_unsigned_power_of_two
-    card1_card_core1_regs_fifo2_reg_word119_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word119_written[32-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word119_written[1-1:0] < 1))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word119_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
+assign card1_card_core1_regs_fifo2_reg_word119_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
+assign card1_card_core1_regs_fifo2_reg_word119_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds78_whole = {(!card1_card_core1_regs_fifo2_reg_word119_set_zero), card1_card_core1_regs_fifo2_reg_word119_set_low};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_below = ((card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds78_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds78_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_above = (card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds78_whole[9-1:8] != 0);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds79_whole = {(!card1_card_core1_regs_fifo2_reg_word119_bus_zero), card1_card_core1_regs_fifo2_reg_word119_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_below = ((card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds79_whole[9-1:1] == 0) && (card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds79_whole[1-1:0] < 1));
+assign card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_above = (card1_card_core1_regs_fifo2_reg_word119__limit_either26__bounds79_whole[9-1:8] != 0);
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_below, card1_card_core1_regs_fifo2_reg_word119_set_selected, card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_above, card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_above, card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_below) begin: card1_card_core1_regs_fifo2_reg_word119__limit_either26_choose
+    if (card1_card_core1_regs_fifo2_reg_word119_set_selected) begin
+        card1_card_core1_regs_fifo2_reg_word119__limit_either26_below = card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_below;
+        card1_card_core1_regs_fifo2_reg_word119__limit_either26_above = card1_card_core1_regs_fifo2_reg_word119__limit_either26_set_above;
+    end
+    else begin
+        card1_card_core1_regs_fifo2_reg_word119__limit_either26_below = card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_below;
+        card1_card_core1_regs_fifo2_reg_word119__limit_either26_above = card1_card_core1_regs_fifo2_reg_word119__limit_either26_bus_above;
+    end
+end
+
+
+always @(card1_card_core1_regs_fifo2_reg_word119__limit_either26_below, card1_card_core1_regs_fifo2_reg_word119__limit_either26_above, card1_card_core1_regs_fifo2_reg_word119_written) begin: card1_card_core1_regs_fifo2_reg_word119__limit_either26__clamp52_clamp
+    card1_card_core1_regs_fifo2_reg_word119_out_of_range = (card1_card_core1_regs_fifo2_reg_word119__limit_either26_below || card1_card_core1_regs_fifo2_reg_word119__limit_either26_above);
+    if (card1_card_core1_regs_fifo2_reg_word119__limit_either26_below) begin
         card1_card_core1_regs_fifo2_reg_word119_honoured = 1;
     end
-    else if ((card1_card_core1_regs_fifo2_reg_word119_written[32-1:8] != 0)) begin
+    else if (card1_card_core1_regs_fifo2_reg_word119__limit_either26_above) begin
         card1_card_core1_regs_fifo2_reg_word119_honoured = 255;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word119_honoured = card1_card_core1_regs_fifo2_reg_word119_written[8-1:0];
-        card1_card_core1_regs_fifo2_reg_word119_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word119_honoured = card1_card_core1_regs_fifo2_reg_word119_written;
     end
 end
 
@@ -5255,26 +5849,35 @@ assign card1_card_core1_regs_fifo2_reg_word120_shown_wide = {30'h0, card1_card_c
 assign card1_card_core1_regs_fifo2_reg_word120_mine_write = (card1_card_core1_regs_fifo2_written_addr == 152);
 
 
-always @(card1_card_core1_regs_fifo2_reg_word120_shown_wide, card1_card_core1_regs_fifo2_reg_word120_set_mine, card1_card_core1_regs_fifo2_written_mask, card1_card_core1_regs_fifo2_set_index, card1_card_core1_regs_fifo2_written_data, card1_card_core1_regs_fifo2_set_value) begin: card1_card_core1_regs_fifo2_reg_word120_merge_bytes
-    if ((card1_card_core1_regs_fifo2_reg_word120_set_mine && (card1_card_core1_regs_fifo2_set_index == 0))) begin
-        card1_card_core1_regs_fifo2_reg_word120_written = card1_card_core1_regs_fifo2_set_value[32-1:0];
-    end
-    else begin
-        card1_card_core1_regs_fifo2_reg_word120_written = ((card1_card_core1_regs_fifo2_reg_word120_shown_wide[32-1:0] & (~card1_card_core1_regs_fifo2_written_mask[32-1:0])) | (card1_card_core1_regs_fifo2_written_data[32-1:0] & card1_card_core1_regs_fifo2_written_mask[32-1:0]));
-    end
-end
+
+assign card1_card_core1_regs_fifo2_reg_word120_merged = ((card1_card_core1_regs_fifo2_step_mode & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
 
 
-always @(card1_card_core1_regs_fifo2_reg_word120_written) begin: card1_card_core1_regs_fifo2_reg_word120__limit83_clamp_above
-    card1_card_core1_regs_fifo2_reg_word120_out_of_range = 1'b1;
-    if (((card1_card_core1_regs_fifo2_reg_word120_written[32-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word120_written[2-1:0] > 2))) begin
+
+assign card1_card_core1_regs_fifo2_reg_word120__limit56__bounds80_whole = {(!card1_card_core1_regs_fifo2_reg_word120_zero_above), card1_card_core1_regs_fifo2_reg_word120_merged};
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120__limit56_below = 1'b0;
+assign card1_card_core1_regs_fifo2_reg_word120__limit56_above = ((card1_card_core1_regs_fifo2_reg_word120__limit56__bounds80_whole[3-1:2] != 0) || (card1_card_core1_regs_fifo2_reg_word120__limit56__bounds80_whole[2-1:0] > 2));
+
+
+always @(card1_card_core1_regs_fifo2_reg_word120__limit56_below, card1_card_core1_regs_fifo2_reg_word120__limit56_above, card1_card_core1_regs_fifo2_reg_word120_merged) begin: card1_card_core1_regs_fifo2_reg_word120__limit56__clamp53_clamp
+    card1_card_core1_regs_fifo2_reg_word120_out_of_range = (card1_card_core1_regs_fifo2_reg_word120__limit56_below || card1_card_core1_regs_fifo2_reg_word120__limit56_above);
+    if (card1_card_core1_regs_fifo2_reg_word120__limit56_below) begin
+        card1_card_core1_regs_fifo2_reg_word120_honoured = 0;
+    end
+    else if (card1_card_core1_regs_fifo2_reg_word120__limit56_above) begin
         card1_card_core1_regs_fifo2_reg_word120_honoured = 2;
     end
     else begin
-        card1_card_core1_regs_fifo2_reg_word120_honoured = card1_card_core1_regs_fifo2_reg_word120_written[2-1:0];
-        card1_card_core1_regs_fifo2_reg_word120_out_of_range = 1'b0;
+        card1_card_core1_regs_fifo2_reg_word120_honoured = card1_card_core1_regs_fifo2_reg_word120_merged;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word120_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:2] & card1_card_core1_regs_fifo2_written_mask[32-1:2]) == 0);
 
 
 

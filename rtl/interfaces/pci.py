@@ -144,7 +144,7 @@ class ConfigSpace:
     driven) and ``parity_error`` (a parity error was detected at the last
     edge), and ``irq`` (Status.Interrupt Status).  From it: the Command bits
     the target obeys, the BARs as written (``bar0`` 16 bits of PC I/O space,
-    ``bar1`` and ``bar2`` 32), and ``rdata``, the dword ``index`` names as a configuration
+    ``bar1`` and ``bar2`` 32; the bits below a BAR's size stay 0), and ``rdata``, the dword ``index`` names as a configuration
     read returns it."""
 
     def __init__(self):

@@ -52,6 +52,11 @@ def pci_config(clock, reset, config, *, build=Build()):
     mem_bar_writable = (0xFFFFFFFF << build.mem_bar_bits) & 0xFFFFFFFF
     alias_bar_writable = (0xFFFFFFFF << alias_bar_bits(build.io_bar_bits, build.reg_bar_bits)) & 0xFFFFFFFF
 
+    # the writable bits of each byte lane of BAR0, BAR1, BAR2
+    io_0, io_1 = ((io_bar_writable >> (8 * lane)) & 0xFF for lane in range(2))
+    mem_0, mem_1, mem_2, mem_3 = ((mem_bar_writable >> (8 * lane)) & 0xFF for lane in range(4))
+    alias_0, alias_1, alias_2, alias_3 = ((alias_bar_writable >> (8 * lane)) & 0xFF for lane in range(4))
+
     signaled_target_abort = Signal(bool(0))
     signaled_system_error = Signal(bool(0))
     detected_parity_error = Signal(bool(0))
@@ -78,29 +83,29 @@ def pci_config(clock, reset, config, *, build=Build()):
                     clear_system_error = data[30]
                     clear_parity_error = data[31]
             elif config.index == CONFIG_BAR0:
-                # all lanes stored; the read-only bits are masked where read
+                # only the writable bits are stored; the others stay 0 (no flip-flop)
                 if not cbe_n[0]:
-                    config.bar0.next[8:0] = data[8:0]
+                    config.bar0.next[8:0] = data[8:0] & io_0
                 if not cbe_n[1]:
-                    config.bar0.next[16:8] = data[16:8]
+                    config.bar0.next[16:8] = data[16:8] & io_1
             elif config.index == CONFIG_BAR1:
                 if not cbe_n[0]:
-                    config.bar1.next[8:0] = data[8:0]
+                    config.bar1.next[8:0] = data[8:0] & mem_0
                 if not cbe_n[1]:
-                    config.bar1.next[16:8] = data[16:8]
+                    config.bar1.next[16:8] = data[16:8] & mem_1
                 if not cbe_n[2]:
-                    config.bar1.next[24:16] = data[24:16]
+                    config.bar1.next[24:16] = data[24:16] & mem_2
                 if not cbe_n[3]:
-                    config.bar1.next[32:24] = data[32:24]
+                    config.bar1.next[32:24] = data[32:24] & mem_3
             elif config.index == CONFIG_BAR2:
                 if not cbe_n[0]:
-                    config.bar2.next[8:0] = data[8:0]
+                    config.bar2.next[8:0] = data[8:0] & alias_0
                 if not cbe_n[1]:
-                    config.bar2.next[16:8] = data[16:8]
+                    config.bar2.next[16:8] = data[16:8] & alias_1
                 if not cbe_n[2]:
-                    config.bar2.next[24:16] = data[24:16]
+                    config.bar2.next[24:16] = data[24:16] & alias_2
                 if not cbe_n[3]:
-                    config.bar2.next[32:24] = data[32:24]
+                    config.bar2.next[32:24] = data[32:24] & alias_3
             elif config.index == CONFIG_INTERRUPT:
                 if not cbe_n[0]:
                     interrupt_line.next = data[8:0]

@@ -24,7 +24,14 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     this register's when ``bus.addr`` is its offset, on ``chain_out.data``
     (a chain of ORs, so the decoder is generated from the table; reads have
     no side effect here, and whether the bus reads at all is decided after
-    the chain's end).  Parameter: ``aliases``, more offsets the register
+    the chain's end).  A register with a range keeps the written word's own
+    bits (``written``, the bus's bytes merged with the register, or SET's
+    value) and, of the bits above them, only whether they are all 0 (all 1
+    and bit 31 too when signed, ``_above``): flags of the bus's masked data,
+    the same for every register of the width, so the registers share them.
+    A SET register compares the bus's word and SET's value with its bounds
+    each before it chooses (``_limit_either``): the compares of SET's value
+    are shared by the registers of one range.  Parameter: ``aliases``, more offsets the register
     answers at, exactly as at its own (X's and Y's per-axis block offsets in
     BAR2, ``models.registers.axis_aliases``).
 
@@ -35,10 +42,21 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     """
     spec = word.spec
     width, offset = spec.width, spec.offset
+    if len(aliases) > 1:
+        raise ValueError(f"{spec.name}: one alias offset at most, not {aliases}")
+    alias = aliases[0] if aliases else None
     checked = spec.minimum is not None or spec.maximum is not None
     mine = Signal(bool(0))
     mine_write = Signal(bool(0))
-    written = Signal(intbv(0)[32:] if checked else intbv(0)[width:])
+    written = Signal(intbv(0)[width:])
+    # a SET register's sources: the bus's word (bytes merged with the register) and SET's value,
+    # each with "its bits above the width are all 0"
+    merged = Signal(intbv(0)[width:]) if spec.set_index is not None else written
+    set_low = Signal(intbv(0)[width:])
+    set_zero, bus_zero = Signal(bool(0)), Signal(bool(0))
+    # of the written word's bits above ``width``: all 0, all 1, bit 31 (``_above``)
+    zero_above, ones_above, sign = (Signal(bool(0)) for _ in range(3))
+    set_selected = Signal(bool(0))
     shown_wide = Signal(intbv(0)[32:])
     honoured = Signal(intbv(0)[width:])
     out_of_range = Signal(bool(0))
@@ -47,10 +65,6 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     set_target = spec.set_index if spec.set_index is not None else 0
     stored = spec.access in ("RW", "W1C", "W1S", "WP")
     shown = word.value if spec.access in ("RW", "W1C", "W1S") else word.hw
-
-    if len(aliases) > 1:
-        raise ValueError(f"{spec.name}: one alias offset at most, not {aliases}")
-    alias = aliases[0] if aliases else None
 
     @always_comb
     def select():
@@ -83,25 +97,48 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     def clamp_pass():
         chain_out.clamped.next = chain_in.clamped
 
-    span = 32 if checked else width
+    @always_comb
+    def set_select():
+        set_selected.next = set_mine and set_port.index == set_target
+
+    @always_comb
+    def set_or_bytes():
+        if set_selected:
+            written.next = set_low
+        else:
+            written.next = merged
+
+    @always_comb
+    def set_parts():
+        set_low.next = set_port.value[width:]
+        set_zero.next = set_port.value[32:width] == 0
+        bus_zero.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
 
     @always_comb
     def merge_bytes():
-        if set_mine and set_port.index == set_target:
-            written.next = set_port.value[span:]
-        else:
-            written.next = (shown_wide[span:] & ~bus.byte_mask[span:]) | (bus.wdata[span:] & bus.byte_mask[span:])
+        merged.next = (word.value & ~bus.byte_mask[width:]) | (bus.wdata[width:] & bus.byte_mask[width:])
 
     @always_comb
     def mask_bytes():
-        written.next = bus.wdata[span:] & bus.byte_mask[span:]
+        written.next = bus.wdata[width:] & bus.byte_mask[width:]
 
-    merge = merge_bytes if spec.access == "RW" else mask_bytes  # RW: shown_wide is the register
+    if spec.access != "RW":
+        merge = [mask_bytes]
+    elif spec.set_index is None:
+        merge = [merge_bytes]
+    else:
+        merge = [merge_bytes, set_select, set_or_bytes, set_parts]
     generators = [select if alias is None else select_either, read_chain, zero_extend(shown, shown_wide)]
     if not stored:
         return generators + [clamp_pass]
-    generators += [select_write if alias is None else select_write_either, merge,
-                   _limit(written, honoured, out_of_range, spec)]
+    generators += [select_write if alias is None else select_write_either, *merge]
+    if spec.set_index is not None:
+        generators.append(_limit_either(set_selected, set_low, set_zero, merged, bus_zero, written, honoured,
+                                        out_of_range, spec))
+    else:
+        generators.append(_limit(written, zero_above, ones_above, sign, honoured, out_of_range, spec))
+        if checked and width < 32:
+            generators.append(_above(bus, width, spec.signed, zero_above, ones_above, sign))
     generators.append(clamp_chain if spec.access in ("RW", "WP") else clamp_pass)
     generators.append(_store(clock, reset, mine_write, bus, set_mine, set_port, set_target, written, honoured,
                              out_of_range, word, clamped, spec))
@@ -125,8 +162,30 @@ def zero_extend(narrow, wide):
 
 
 @block
-def _limit(written, honoured, out_of_range, spec):
-    """``honoured``: ``written`` clamped to the register's range (or cut to its width)."""
+def _above(bus, width, signed, zero_above, ones_above, sign):
+    """Of a bus write's 32-bit word (its data under its byte mask), bits ``width``..31:
+    ``zero_above`` all 0; when ``signed``, also ``ones_above`` all 1 and ``sign`` bit 31
+    (an unsigned range reads neither).  The same for every register of the width: shared."""
+    ones = (1 << (32 - width)) - 1
+
+    @always_comb
+    def unsigned_flags():
+        zero_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
+
+    @always_comb
+    def signed_flags():
+        zero_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
+        ones_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == ones
+        sign.next = bus.wdata[31] and bus.byte_mask[31]
+
+    return signed_flags if signed else unsigned_flags
+
+
+@block
+def _limit(written, zero_above, ones_above, sign, honoured, out_of_range, spec):
+    """``honoured``: the written word clamped to the register's range (or cut
+    to its width): ``written`` its low ``spec.width`` bits, ``zero_above``,
+    ``ones_above`` and ``sign`` what ``_above`` says of the bits above."""
     width = spec.width
     low = spec.minimum if spec.minimum is not None else (-(1 << (width - 1)) if spec.signed else 0)
     high = spec.maximum if spec.maximum is not None else (
@@ -138,21 +197,22 @@ def _limit(written, honoured, out_of_range, spec):
         # no range, or one of every 32-bit word (ENC_SCALE, FERROR_LIMIT): nothing to clamp
         @always_comb
         def cut():
-            honoured.next = written[width:]
+            honoured.next = written
         return cut
+    if width == 32:
+        raise ValueError(f"{spec.name}: a 32-bit register clamps to every 32-bit word only")
 
     if spec.signed:
         if (low, high) != (-(1 << (width - 1)), (1 << (width - 1)) - 1):
             raise ValueError(f"{spec.name}: a signed register clamps to its full width only")
-        ones = (1 << (33 - width)) - 1
 
         @always_comb
         def clamp_signed():
             # in range when bits 31..width-1 are copies of the sign: no comparator needed
-            if written[32:width - 1] == 0 or written[32:width - 1] == ones:
-                honoured.next = written[width:]
+            if (zero_above and not written[width - 1]) or (ones_above and written[width - 1]):
+                honoured.next = written
                 out_of_range.next = False
-            elif written[31]:
+            elif sign:
                 honoured.next = low_bits
                 out_of_range.next = True
             else:
@@ -160,56 +220,98 @@ def _limit(written, honoured, out_of_range, spec):
                 out_of_range.next = True
         return clamp_signed
 
+    below, above = Signal(bool(0)), Signal(bool(0))
+    return _bounds(written, zero_above, below, above, spec), _clamp(written, below, above, honoured, out_of_range,
+                                                                    low_bits, high_bits)
+
+
+@block
+def _limit_either(set_selected, set_low, set_zero, merged, bus_zero, written, honoured, out_of_range, spec):
+    """A SET register's ``_limit``: ``written`` is ``set_low`` (SET's value, ``set_zero``
+    its bits above the width all 0) while ``set_selected``, else ``merged`` (the bus's,
+    ``bus_zero``); each source is compared with the bounds before the choice, so the
+    compares of SET's value are shared by the registers of one range."""
+    width, low, high = spec.width, spec.minimum, spec.maximum
+    if spec.signed or low is None or high is None or width == 32:
+        raise ValueError(f"{spec.name}: a SET register has an unsigned range narrower than 32 bits")
+    below, above, set_below, set_above, bus_below, bus_above = (Signal(bool(0)) for _ in range(6))
+
+    @always_comb
+    def choose():
+        if set_selected:
+            below.next = set_below
+            above.next = set_above
+        else:
+            below.next = bus_below
+            above.next = bus_above
+
+    return (_bounds(set_low, set_zero, set_below, set_above, spec),
+            _bounds(merged, bus_zero, bus_below, bus_above, spec), choose,
+            _clamp(written, below, above, honoured, out_of_range, low & ((1 << width) - 1), high))
+
+
+@block
+def _bounds(value, zero_above, below, above, spec):
+    """Of a written word (``value`` its low ``spec.width`` bits, ``zero_above`` its bits above
+    all 0), unsigned: ``below`` under the register's minimum, ``above`` over its maximum."""
+    width = spec.width
+    low = spec.minimum if spec.minimum is not None else 0
+    high = spec.maximum if spec.maximum is not None else (1 << width) - 1
+    # the word as an unsigned number of width + 1 bits: the top bit set when any bit above width is
+    # (it is then above high, as a 32-bit word with such a bit is)
+    whole = Signal(intbv(0)[width + 1:])
+    top = width + 1
     high_top, low_top = high.bit_length(), max(low.bit_length(), 1)
 
     @always_comb
-    def clamp_unsigned():
+    def widen():
+        whole.next = concat(not zero_above, value)
+
+    @always_comb
+    def compare():
         # compare only the bits a bound has; any higher bit set is out of range
-        out_of_range.next = True
-        if written[32:low_top] == 0 and written[low_top:] < low:
-            honoured.next = low_bits
-        elif written[32:high_top] != 0 or written[high_top:] > high:
-            honoured.next = high_bits
-        else:
-            honoured.next = written[width:]
-            out_of_range.next = False
+        below.next = whole[top:low_top] == 0 and whole[low_top:] < low
+        above.next = whole[top:high_top] != 0 or whole[high_top:] > high
 
     @always_comb
-    def clamp_unsigned_power_of_two():
+    def compare_power_of_two():
         # high is 2**high_top - 1: above it exactly when a higher bit is set
-        out_of_range.next = True
-        if written[32:low_top] == 0 and written[low_top:] < low:
-            honoured.next = low_bits
-        elif written[32:high_top] != 0:
-            honoured.next = high_bits
-        else:
-            honoured.next = written[width:]
-            out_of_range.next = False
+        below.next = whole[top:low_top] == 0 and whole[low_top:] < low
+        above.next = whole[top:high_top] != 0
 
     @always_comb
-    def clamp_above_power_of_two():
-        # low is 0 (nothing below it) and high is 2**high_top - 1: out of range when a higher bit is set
-        out_of_range.next = True
-        if written[32:high_top] != 0:
-            honoured.next = high_bits
-        else:
-            honoured.next = written[width:]
-            out_of_range.next = False
+    def compare_above_power_of_two():
+        # low is 0 (nothing below it) and high is 2**high_top - 1
+        below.next = False
+        above.next = whole[top:high_top] != 0
 
     @always_comb
-    def clamp_above():
+    def compare_above():
         # low is 0: only the upper bound is compared
-        out_of_range.next = True
-        if written[32:high_top] != 0 or written[high_top:] > high:
-            honoured.next = high_bits
-        else:
-            honoured.next = written[width:]
-            out_of_range.next = False
+        below.next = False
+        above.next = whole[top:high_top] != 0 or whole[high_top:] > high
 
     power_of_two = high == (1 << high_top) - 1
     if low == 0:
-        return clamp_above_power_of_two if power_of_two else clamp_above
-    return clamp_unsigned_power_of_two if power_of_two else clamp_unsigned
+        return widen, (compare_above_power_of_two if power_of_two else compare_above)
+    return widen, (compare_power_of_two if power_of_two else compare)
+
+
+@block
+def _clamp(written, below, above, honoured, out_of_range, low_bits, high_bits):
+    """``honoured``: ``low_bits`` when ``below``, else ``high_bits`` when ``above``, else ``written``."""
+
+    @always_comb
+    def clamp():
+        out_of_range.next = below or above
+        if below:
+            honoured.next = low_bits
+        elif above:
+            honoured.next = high_bits
+        else:
+            honoured.next = written
+
+    return clamp
 
 
 @block
