@@ -24,7 +24,8 @@ import tempfile
 
 from models.encoder_model import FILTER_MAX, GRAY, MASK32, MODE_QUADRATURE, pin_to_count, quadrature_delta
 from rtl.convert import convert_unit
-from sim.card.encoder_bench import Sample, run_encoder
+from sim.card.encoder_bench import run_encoder
+from sim.card.encoder_waves import Sample
 
 CLOCK_MHZ = 33.33
 EDGES = 400

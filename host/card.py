@@ -22,6 +22,11 @@ instruction register fetches the next command while the DDA checks an arc,
 docs/instructions.md).  Times are converted with the card's CLOCK_HZ, sizes
 come from FIFO_SIZE and BUILD: the host needs no knowledge of the build.
 
+The registers by name come from ``host.card_registers`` (``read``, ``write``,
+``field``, ``axis_read``, ``axis_write``), the identity from
+``host.card_identity``, ``CardError`` and the record of queued commands from
+``host.card_errors``.
+
 The machine side (docs/machine.md) comes from ``host.machine_io``: ``drive``,
 ``hold``, ``resume``, ``inputs``, ``watchdog``, ``estop_state``, ``limits``,
 ``stop_reason``, ``clear_stop`` (the drives stay off after it: ``drive``
@@ -29,10 +34,11 @@ again), ``home``, ``machine_side``, ``machine`` (a simulated card's simulated
 machine).  A card the guard has stopped raises ``MachineStopped`` from
 ``check`` and ``wait_done``.
 """
-import bisect
 import math
-from dataclasses import dataclass
 
+from host.card_errors import ERROR_NAMES, CardError, CommandRecord, error_name
+from host.card_identity import IdentityError, identify
+from host.card_registers import CardRegisters
 from host.machine import Machine
 from host.machine_io import MachineIO, MachineStopped
 from host.transports.base import POLL_SECONDS
@@ -41,47 +47,11 @@ from models import instructions as isa
 from models import registers as regmap
 from models.dda_model import ArcCommand, plan_arc
 
-MAJOR = regmap.VERSION >> 8
-# the oldest minor version this host works with: 2.1 added STEP_SPACE and STEP_MODE, which configure
-# writes; 2.2's per-axis blocks need no check (X's and Y's registers are BAR0's, a card of more axes is 2.2)
-MINOR = 1
-ARC_OPCODE = isa.encode("ARC", 1, 0, 1, 0)[0] >> 28
-ERROR_NAMES = {code: name for code, name, _ in isa.ERRORS}
+# the card API's names callers take from here (host.cli, the tests)
+__all__ = ["Card", "CardError", "IdentityError", "MachineStopped"]
 
 
-class CardError(RuntimeError):
-    """The card refused a command: ``name`` (e.g. ``DDA_REJECTED``), ``code``
-    (STATUS.ERROR) and ``command`` (what the host queued, as it was named)."""
-
-    def __init__(self, name, code, command):
-        super().__init__(f"the card refused {command}: {name}" if command else f"card error {name}")
-        self.name, self.code, self.command = name, code, command
-
-
-class IdentityError(RuntimeError):
-    """Not this card, or a register map this host does not speak."""
-
-
-@dataclass(frozen=True)
-class Identity:
-    version: tuple      # (major, minor)
-    clock_hz: int
-    fifo_words: int
-    coord_width: int
-    axes: int
-    variants: tuple     # ARC.VARIANT values built
-    device: int         # BUILD.DEVICE
-    vendor_id: int
-    device_id: int
-    encoders: bool = False   # BUILD.ENCODERS: the card has encoder inputs and their registers
-
-
-def error_name(code):
-    """The name of STATUS.ERROR ``code`` (docs/instructions.md)."""
-    return ERROR_NAMES.get(code, f"UNKNOWN_{code}")
-
-
-class Card(MachineIO):
+class Card(CardRegisters, MachineIO):
     """The card behind ``transport``, identified on construction."""
 
     def __init__(self, transport):
@@ -90,76 +60,10 @@ class Card(MachineIO):
         self.tag = 0
         self._forget()
 
-    # ----- registers -----------------------------------------------------------
-    def read(self, name):
-        reg = regmap.register(name)
-        if reg.option is not None and not getattr(self.identity, reg.option):
-            raise ValueError(f"{name}: the card was built without {reg.option} (BUILD)")
-        return self.transport.read(reg.offset)
-
-    def write(self, name, value):
-        """Write register ``name``; a value outside its range is refused (the card would clamp it)."""
-        reg = regmap.register(name)
-        if reg.access == "RO":
-            raise ValueError(f"{name} is read only")
-        low = reg.minimum if reg.minimum is not None else (-(1 << (reg.width - 1)) if reg.signed else 0)
-        high = reg.maximum if reg.maximum is not None else (1 << reg.width) - 1
-        if not low <= value <= high:
-            raise ValueError(f"{name} = {value} is outside {low}..{high}")
-        self.transport.write(reg.offset, value & 0xFFFFFFFF)
-
-    def field(self, reg, name, word=None):
-        return regmap.field_value(reg, name, self.read(reg) if word is None else word)
-
-    def _axis_register(self, name, axis):
-        """The per-axis register ``name`` of ``axis`` (0 X), if the card has that axis: BAR0's
-        own for X and Y (POS_X, ...), in BAR2's block for the others (docs/registers.md)."""
-        if not isinstance(axis, int) or not 0 <= axis < self.identity.axes:
-            raise ValueError(f"axis {axis!r}: the card has {self.identity.axes} axes "
-                             f"({names(range(self.identity.axes))})")
-        reg = regmap.axis_register(name, axis)
-        if reg.option is not None and not getattr(self.identity, reg.option):
-            raise ValueError(f"{reg.name}: the card was built without {reg.option} (BUILD)")
-        return reg
-
-    def axis_read(self, name, axis):
-        """The per-axis register ``name`` (POS, PULSE_PERIOD, PULSE_COUNT) of ``axis``."""
-        return self.transport.read(self._axis_register(name, axis).offset)
-
-    def axis_write(self, name, axis, value):
-        """Write the per-axis register ``name`` of ``axis``; a value outside its range is refused."""
-        reg = self._axis_register(name, axis)
-        if reg.access == "RO":
-            raise ValueError(f"{reg.name} is read only")
-        low = reg.minimum if reg.minimum is not None else 0
-        high = reg.maximum if reg.maximum is not None else (1 << reg.width) - 1
-        if not low <= value <= high:
-            raise ValueError(f"{reg.name} = {value} is outside {low}..{high}")
-        self.transport.write(reg.offset, value & 0xFFFFFFFF)
-
     # ----- identity and set-up --------------------------------------------------
     def identify(self):
         """Read ID and the capability registers; IdentityError for another card or major version."""
-        word = self.read("ID")
-        magic, version = regmap.field_value("ID", "MAGIC", word), regmap.field_value("ID", "VERSION", word)
-        where = self.transport.name
-        if magic != regmap.ID_MAGIC:
-            raise IdentityError(f"{where}: ID reads {word:#010x}, not a DDA card (magic {regmap.ID_MAGIC:#x})")
-        major, minor = version >> 8, version & 0xFF
-        if major != MAJOR:
-            raise IdentityError(f"{where}: register map {major}.{minor}; this host software speaks {MAJOR}.x")
-        if minor < MINOR:
-            raise IdentityError(f"{where}: register map {major}.{minor} lacks what {MAJOR}.{MINOR} added "
-                                "(models/registers.py, VERSIONS: STEP_SPACE and STEP_MODE in 2.1): "
-                                "load a newer bitstream")
-        build = self.read("BUILD")
-        ids = self.transport.config_read(0)
-        variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)
-        return Identity((major, minor), self.read("CLOCK_HZ"), self.field("FIFO_SIZE", "WORDS"),
-                        regmap.field_value("BUILD", "COORD_WIDTH", build), regmap.field_value("BUILD", "AXES", build),
-                        tuple(v for v in range(4) if variants >> v & 1),
-                        regmap.field_value("BUILD", "DEVICE", build), ids & 0xFFFF, ids >> 16,
-                        bool(regmap.field_value("BUILD", "ENCODERS", build)))
+        return identify(self)
 
     def clocks(self, nanoseconds):
         """Card clocks covering ``nanoseconds`` (rounded up)."""
@@ -282,13 +186,7 @@ class Card(MachineIO):
     def queue(self, words, commands):
         """Write ``words`` into the FIFO now (the caller has made room);
         ``commands``: [(words, name)] in order, for error reports."""
-        offset = 0
-        for length, what in commands:
-            self._starts.append(self._written)
-            self._names.append(what)
-            self._opcodes.append(words[offset] >> 28)
-            self._written += length
-            offset += length
+        self._record.add(words, commands)
         self.transport.fifo_write(words)
 
     # ----- state ----------------------------------------------------------------
@@ -302,7 +200,7 @@ class Card(MachineIO):
     def consumed(self, status=None):
         """Words the card has taken from the FIFO since the last stop."""
         status = self.status() if status is None else status
-        return self._written - regmap.field_value("STATUS", "FIFO_LEVEL", status)
+        return self._record.written - regmap.field_value("STATUS", "FIFO_LEVEL", status)
 
     def last_mark(self):
         return self.field("MARK_TAG", "TAG")
@@ -352,14 +250,7 @@ class Card(MachineIO):
         """The name of the command the card refused with ``code``, given the
         words it has consumed: the one they end in; for DDA_REJECTED the ARC
         among the last two consumed commands (the earlier if both are)."""
-        last = bisect.bisect_right(self._starts, consumed - 1) - 1
-        if last < 0:
-            return None
-        if ERROR_NAMES[code] == "DDA_REJECTED":
-            for index in (last - 1, last):
-                if index >= 0 and self._opcodes[index] == ARC_OPCODE:
-                    return self._names[index]
-        return self._names[last]
+        return self._record.refused(code, consumed)
 
     def wait_done(self, timeout=60.0):
         """Wait until the queue has run empty after motion (STATUS.DONE, with
@@ -399,6 +290,5 @@ class Card(MachineIO):
         return self.position()
 
     def _forget(self):
-        self._written = 0
-        self._starts, self._names, self._opcodes = [], [], []
+        self._record = CommandRecord()
 

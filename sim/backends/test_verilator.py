@@ -4,6 +4,7 @@ monitor, waves of a window.  The card's behaviour on it is judged with the
 other back ends in ``sim/card/test_card_e2e.py``.
 """
 import multiprocessing
+import re
 
 import pytest
 
@@ -65,6 +66,19 @@ def test_the_cache_key_covers_the_verilog_the_tool_and_the_options(tmp_path):
     assert key != model_key([source], "counter", None, tool, defines=("X=1",))
     source.write_text(COUNTER + " ")
     assert key != model_key([source], "counter", None, tool)
+
+
+def test_every_file_the_harness_includes_is_in_the_cache_key():
+    # A header outside the key would let a change to it load the old model from the cache.
+    included, unread = set(), [build.HARNESS]
+    while unread:
+        for name in re.findall(r'^#include "([^"]+)"', unread.pop().read_text(), re.MULTILINE):
+            path = build.HERE / name
+            if path.exists() and path not in included:  # not vc_ports.h / verilated*.h of the build
+                included.add(path)
+                unread.append(path)
+    assert included == set(build.HARNESS_HEADERS)
+    assert set(build.HERE.glob("*.h")) == set(build.HARNESS_HEADERS)
 
 
 def _build_in_process(path, queue):

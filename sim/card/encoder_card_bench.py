@@ -22,7 +22,7 @@ from sim.backends.verilator.pci_bus import VerilatorBench
 from sim.backends.verilator.verilated_card import VerilatedCard
 from sim.card.card_e2e import DEFAULT_FIFO, DEVICE, CardUnderTest, card_bars, card_verilog
 from sim.card.card_session import CardSession
-from sim.card.encoder_bench import encoder_waves
+from sim.card.encoder_waves import encoder_waves
 from sim.pci.bench import TARGET_DEVICE
 from sim.pci.host_types import Clocks
 

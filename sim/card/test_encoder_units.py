@@ -1,6 +1,6 @@
 """The encoder units (``rtl/encoder/``) against ``models/encoder_model.py`` every clock.
 
-Seeded random encoder waveforms (``sim/card/encoder_bench.py``: legal walks
+Seeded random encoder waveforms (``sim/card/encoder_waves.py``: legal walks
 down to the closest spacing the filter passes, glitches it must remove,
 illegal samples, noise, step/dir, index arm and zero, the host's writes)
 on the MyHDL blocks and on their Verilog in Icarus and Verilator; defects
@@ -17,7 +17,9 @@ from rtl.encoder.timestamp import timestamp, timestamp_ports
 from sim.backends.clocking import clock_source, reset_then_step
 from sim.backends.icarus import convert_and_cosimulate, convert_module
 from sim.backends.waves import run_traced
-from sim.card.encoder_bench import DEFECTS, HALF_PERIOD, run_encoder, run_following_error, run_probe, with_defect
+from sim.card.encoder_bench import run_encoder, run_following_error, run_probe
+from sim.card.encoder_defects import DEFECTS, with_defect
+from sim.card.unit_under_test import HALF_PERIOD
 
 BACKENDS = ["myhdl", "icarus"]
 # a Verilator model takes about 8 s to build (cached in build/vlt/ after): every one in the slow set

@@ -8,7 +8,7 @@ import pytest
 from formal import groups as catalogue
 from formal.sby import run, tools_available
 from rtl.convert import GEN_DIR
-from sim.card.encoder_bench import with_defect
+from sim.card.encoder_defects import with_defect
 
 pytestmark = [pytest.mark.formal,
               pytest.mark.skipif(tools_available() is not None, reason=str(tools_available()))]

@@ -8,8 +8,10 @@ import sys
 import pytest
 
 from models import registers as regmap
+from models.card_socket import ADVANCE, FIFO, READ, WRITE
 from models.sim_machine import MachineConfig, Motor, Switch
-from sim.card.card_server import ADVANCE, ANSWER, FIFO, READ, REQUEST, WRITE, main
+from sim.card.card_server import main
+from sim.card.card_socket_server import ANSWER, REQUEST
 
 CLOCK_HZ = 1_000_000
 LINE_5_M3 = [1 << 28, 5, (-3) & 0xFFFFFFFF]  # LINE (5, -3) (docs/instructions.md)

@@ -3,7 +3,8 @@
 ``build_model(verilog_files, top)`` verilates ``top`` (``--cc``, no
 ``SYNTHESIS`` define: the plain-Verilog branches of ``gen/``), writes the
 port table ``vc_ports.h`` from the model's own header, compiles the model and
-``harness.cpp`` into ``libmodel.so`` and returns its path.
+``harness.cpp`` (with the headers it includes) into ``libmodel.so`` and returns
+its path.
 
 The cache is ``build/vlt/<top>-<key>/``; the key hashes the Verilog files,
 the harness sources, the tool's version and path, and every option.  A build
@@ -31,7 +32,9 @@ from rtl.convert import build_dir
 
 HERE = Path(__file__).resolve().parent
 HARNESS = HERE / "harness.cpp"
-HARNESS_HEADERS = (HERE / "sim_machine.h",)   # included by the harness: part of its key
+# The headers harness.cpp includes (one translation unit): part of the key.
+HARNESS_HEADERS = tuple(HERE / name for name in ("card.h", "card_bus.h", "machine_hooks.h", "pci_lines.h",
+                                                 "ports.h", "sim_machine.h"))
 PREFIX = "Vmodel"
 LIBRARY = "libmodel.so"
 TOOL_ENVIRONMENT = "DDA_CARD_VERILATOR"

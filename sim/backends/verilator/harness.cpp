@@ -3,7 +3,7 @@
 // with encoders, switches, E-stop: models/sim_machine.py is its definition,
 // clock for clock), behind a C interface for ctypes.
 //
-// The model's ports come from vc_ports.h, written by sim/vlt/build.py from
+// The model's ports come from vc_ports.h, written by build.py from
 // the model's own header (name, width, direction, address).  Nothing here
 // knows the card's internals: Python binds ports to roles by index (clock,
 // each PCI line's in / out / oe, IDSEL, the STEP and DIR pins of up to six
@@ -16,228 +16,22 @@
 //     clock  _/~~\__/~~\__/~~\_
 //     count    1     2     3
 //     pins     <p1 ><p2  ><p3   (sampled after each rising edge)
+//
+// The card (card.h: ports, clock loop, trace), its PCI bus (card_bus.h) and
+// the simulated machine's hooks (machine_hooks.h, the machine in
+// sim_machine.h) are headers of this one translation unit; here is the C
+// interface.
 #include <cstdint>
 #include <cstring>
-#include <memory>
-#include <vector>
 
-#include "verilated.h"
-#include "vc_ports.h"
-#include "sim_machine.h"
-#if VC_TRACE == 1
-#include "verilated_vcd_c.h"
-typedef VerilatedVcdC TraceFile;
-#elif VC_TRACE == 2
-#include "verilated_fst_c.h"
-typedef VerilatedFstC TraceFile;
-#endif
+#include "card.h"
+#include "card_bus.h"
+#include "machine_hooks.h"
 
 namespace {
 
-struct Port {
-    const char* name;
-    int width;
-    int direction;  // 0 input, 1 output
-    void* address;
-};
-
-// PCI lines, in the order of sim/pci_bus.py's LINE_WIDTHS.
-enum Line { AD, CBE, PAR, FRAME, IRDY, TRDY, DEVSEL, STOP, PERR, SERR, INTA, LINES };
-const int kLineWidth[LINES] = {32, 4, 1, 1, 1, 1, 1, 1, 1, 1, 1};
-const bool kPulledUp[LINES] = {false, false, false, true, true, true, true, true, true, true, true};
-const bool kOpenDrain[LINES] = {false, false, false, false, false, false, false, false, false, true, true};
-
-enum Pin { STEP_X, DIR_X, STEP_Y, DIR_Y, PINS = 12 };   // axis i: STEP at bit 2i, DIR at 2i + 1
-const unsigned kStepBits = 0x555;
-
 // Why vc_run returned.
 enum Reason { LIMIT = 0, INTERRUPT = 1, STEPS = 2, BUS = 3 };
-
-uint64_t mask(int width) { return width >= 64 ? ~0ULL : (1ULL << width) - 1; }
-
-
-uint64_t read_port(const Port& port) {
-    if (port.width <= 8) return *static_cast<uint8_t*>(port.address);
-    if (port.width <= 16) return *static_cast<uint16_t*>(port.address);
-    if (port.width <= 32) return *static_cast<uint32_t*>(port.address);
-    return *static_cast<uint64_t*>(port.address);
-}
-
-void write_port(const Port& port, uint64_t value) {
-    value &= mask(port.width);
-    if (port.width <= 8) *static_cast<uint8_t*>(port.address) = static_cast<uint8_t>(value);
-    else if (port.width <= 16) *static_cast<uint16_t*>(port.address) = static_cast<uint16_t>(value);
-    else if (port.width <= 32) *static_cast<uint32_t*>(port.address) = static_cast<uint32_t>(value);
-    else *static_cast<uint64_t*>(port.address) = value;
-}
-
-struct Card {
-    std::unique_ptr<VerilatedContext> context;
-    std::unique_ptr<VC_MODEL> model;
-    std::vector<Port> ports;
-    int clock = -1;
-    int line_in[LINES], line_out[LINES], line_oe[LINES];
-    int idsel = -1, idsel_bit = 0;
-    int pins[PINS];
-    uint64_t clocks = 0;
-    uint64_t step_rises = 0;
-    unsigned pin_state = 0;
-    std::vector<uint64_t> edge_clocks;
-    std::vector<uint16_t> edge_states;
-    Machine machine;
-#if VC_TRACE
-    std::unique_ptr<TraceFile> trace;
-    uint64_t trace_from = 0, trace_to = 0, half_period = 15;
-#endif
-
-    Card() {
-        for (int line = 0; line < LINES; ++line) line_in[line] = line_out[line] = line_oe[line] = -1;
-        for (int pin = 0; pin < PINS; ++pin) pins[pin] = -1;
-    }
-
-    uint64_t get(int index) const { return read_port(ports[index]); }
-    void set(int index, uint64_t value) { write_port(ports[index], value); }
-
-    // The machine's inputs to the card's ports (the next rising edge takes
-    // them); a change of them or of DRIVE_ENABLE (bit 7) is recorded.
-    void drive_inputs(bool enabled) {
-        Machine& m = machine;
-        unsigned word = m.word() | (enabled ? 0x80u : 0u);
-        for (int input = 0; input < INPUTS; ++input)
-            if (m.inputs[input] >= 0) set(m.inputs[input], (word >> input) & 1);
-        if (word != m.pins) {
-            m.change_clocks.push_back(clocks);
-            m.change_pins.push_back(static_cast<uint8_t>(word));
-            m.pins = word;
-        }
-    }
-
-    // The motors' encoder pins to the card's ports; a change is recorded.
-    void drive_encoders() {
-        Machine& m = machine;
-        unsigned word = m.encoder_word();
-        for (int axis = 0; axis < 2; ++axis)
-            for (int pin = 0; pin < 3; ++pin)
-                if (m.motors[axis].ports[pin] >= 0) set(m.motors[axis].ports[pin], (word >> (3 * axis + pin)) & 1);
-        if (word != m.encoder_pins) {
-            m.encoder_clocks.push_back(clocks);
-            m.encoder_words.push_back(static_cast<uint8_t>(word));
-            m.encoder_pins = word;
-        }
-    }
-
-    // One clock of models/sim_machine.py's SimMachine on the pins after an edge.
-    void machine_clock(unsigned state) {
-        Machine& m = machine;
-        bool enabled = m.drive >= 0 && get(m.drive);
-        ++m.clocks;
-        for (int axis = 0; axis < 2; ++axis) {
-            Motor& motor = m.motors[axis];
-            bool step = (state >> (axis ? STEP_Y : STEP_X)) & 1;
-            bool dir = (state >> (axis ? DIR_Y : DIR_X)) & 1;
-            bool rose = step && !m.step_before[axis];
-            m.step_before[axis] = step;
-            bool turns = !motor.present || !motor.stalled(m.clocks);
-            int delta = dir == m.dir_positive[axis] ? 1 : -1;
-            if (rose && enabled && turns) {
-                m.position[axis] += delta;
-                motor.steps += delta;
-            } else if (rose) {
-                ++m.lost[axis];
-            }
-            if (motor.present) motor.follow();
-        }
-        for (int input = 1; input < INPUTS; ++input)
-            if (m.contacts[input].present) m.contacts[input].clock(m.position[kInputAxis[input]]);
-        drive_inputs(enabled);
-        drive_encoders();
-    }
-
-    void dump(uint64_t time) {
-#if VC_TRACE
-        if (trace && clocks >= trace_from && clocks < trace_to) trace->dump(time);
-#else
-        (void)time;
-#endif
-    }
-
-    unsigned sample_pins() const {
-        unsigned state = 0;
-        for (int pin = 0; pin < PINS; ++pin)
-            if (pins[pin] >= 0 && get(pins[pin])) state |= 1u << pin;
-        return state;
-    }
-
-    void tick() {
-        set(clock, 1);
-        model->eval();
-        ++clocks;
-#if VC_TRACE
-        dump(2 * half_period * (clocks - 1) + half_period);
-#endif
-        unsigned state = sample_pins();
-        if (state != pin_state) {
-            unsigned rose = state & ~pin_state;
-            step_rises += __builtin_popcount(rose & kStepBits);
-            edge_clocks.push_back(clocks);
-            edge_states.push_back(static_cast<uint16_t>(state));
-            pin_state = state;
-        }
-        if (machine.on) machine_clock(state);
-        set(clock, 0);
-        model->eval();
-#if VC_TRACE
-        dump(2 * half_period * clocks);
-#endif
-    }
-
-    // The card's drive of a line: true when enabled, its value in *value.
-    bool card_drive(int line, uint64_t* value) const {
-        if (line_out[line] < 0 || line_oe[line] < 0 || !get(line_oe[line])) return false;
-        *value = get(line_out[line]);
-        return true;
-    }
-
-    bool interrupt_asserted() const {
-        uint64_t value = 1;
-        return card_drive(INTA, &value) && value == 0;
-    }
-
-    // Whether the card drives any line but INTA# (nothing may move on a quiet bus).
-    bool drives_bus() const {
-        uint64_t value;
-        for (int line = 0; line < LINES; ++line)
-            if (line != INTA && card_drive(line, &value)) return true;
-        return false;
-    }
-
-    // Resolve the segment from the host's drive and the card's (the rules of
-    // sim/pci_bus.py); feed the card's inputs.  values[l], driven[l] (bit 0
-    // host, bit 1 card), floating[l].
-    void resolve(const uint64_t* host_out, const uint64_t* host_oe, uint64_t* values, uint64_t* drivers,
-                 uint64_t* floating) {
-        for (int line = 0; line < LINES; ++line) {
-            uint64_t card_value = 0;
-            bool card = card_drive(line, &card_value);
-            bool host = host_oe[line] != 0;
-            uint64_t host_value = host_out[line] & mask(kLineWidth[line]);
-            drivers[line] = (host ? 1 : 0) | (card ? 2 : 0);
-            floating[line] = 0;
-            if (kOpenDrain[line]) {
-                values[line] = ((host && host_value == 0) || (card && card_value == 0)) ? 0 : 1;
-            } else if (host || card) {
-                values[line] = (host ? host_value : 0) | (card ? card_value : 0);
-            } else if (kPulledUp[line]) {
-                values[line] = 1;
-            } else {
-                values[line] = 0;
-                floating[line] = 1;
-            }
-            if (line_in[line] >= 0) set(line_in[line], values[line]);
-        }
-        if (idsel >= 0) set(idsel, (values[AD] >> idsel_bit) & 1);
-    }
-};
 
 }  // namespace
 
