@@ -727,6 +727,8 @@ reg card_core0_regs_fifo1_sequencer1_bad_set_index;
 reg card_core0_regs_fifo1_sequencer1_bad_variant;
 reg [3:0] card_core0_regs_fifo1_sequencer1_coord_mask;
 reg [3:0] card_core0_regs_fifo1_sequencer1_count_mask;
+reg signed [23:0] card_core0_regs_fifo1_sequencer1_count_x;
+reg signed [23:0] card_core0_regs_fifo1_sequencer1_count_y;
 wire card_core0_regs_fifo1_sequencer1_discard;
 reg [31:0] card_core0_regs_fifo1_sequencer1_dwell_left;
 reg [3:0] card_core0_regs_fifo1_sequencer1_fetched;
@@ -773,8 +775,6 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xs;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ys;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xe;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
 reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_high;
 reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_low;
@@ -1113,6 +1113,7 @@ reg card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near;
 wire card_core0_dda_axes0_dda_arc1_dda_run1_step_last;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_pending;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_finished;
+wire card_core0_dda_axes0_dda_arc1_dda_run1_cmd_iterate;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_blend;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference;
@@ -5040,7 +5041,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits, card_core0_regs_fifo1_sequencer1_bad_axes) begin: card_core0_regs_fifo1_sequencer1_check
+always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_axes, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits) begin: card_core0_regs_fifo1_sequencer1_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -5199,8 +5200,8 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
         card_core0_regs_fifo1_sequencer1_dda_xe = $signed(card_core0_regs_fifo1_sequencer1_operand_2[24-1:0]);
         card_core0_regs_fifo1_sequencer1_dda_ye = $signed(card_core0_regs_fifo1_sequencer1_operand_3[24-1:0]);
     end
-    card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-    card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
+    card_core0_regs_fifo1_sequencer1_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
+    card_core0_regs_fifo1_sequencer1_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
     card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
     card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
     card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
@@ -6596,7 +6597,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6610,12 +6611,12 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
-        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
+        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6629,7 +6630,7 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
-        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
+        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_count_y;
     end
 end
 
@@ -7900,6 +7901,7 @@ end
 
 assign card_core0_dda_axes0_dda_arc1_dda_check1_move_take = (card_core0_dda_axes0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_axes0_dda_arc1_dda_run1_active) || (card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && card_core0_dda_axes0_dda_arc1_dda_run1_step_finished)));
 assign card_core0_dda_axes0_dda_arc1_dda_run1_taking = (card_core0_dda_axes0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_pending));
+assign card_core0_dda_axes0_dda_arc1_dda_run1_cmd_iterate = (card_core0_dda_axes0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_pending));
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_run1_decision

@@ -31,6 +31,7 @@ module regs_fifo (
     dda_xe,
     dda_ye,
     dda_advance,
+    dda_iterate,
     dda_busy,
     dda_done,
     dda_error,
@@ -147,6 +148,7 @@ output signed [23:0] dda_ye;
 reg signed [23:0] dda_ye;
 output dda_advance;
 wire dda_advance;
+input dda_iterate;
 input dda_busy;
 input dda_done;
 input dda_error;
@@ -634,6 +636,8 @@ reg sequencer0_bad_set_index;
 reg sequencer0_bad_variant;
 reg [3:0] sequencer0_coord_mask;
 reg [3:0] sequencer0_count_mask;
+reg signed [23:0] sequencer0_count_x;
+reg signed [23:0] sequencer0_count_y;
 wire sequencer0_discard;
 reg [31:0] sequencer0_dwell_left;
 reg [3:0] sequencer0_fetched;
@@ -666,8 +670,6 @@ reg sequencer0_arriving_known;
 reg sequencer0_arriving_reserved;
 reg sequencer0_arriving_out_of_range;
 reg sequencer0_mark_strobe;
-reg signed [23:0] sequencer0_pulses_count_x;
-reg signed [23:0] sequencer0_pulses_count_y;
 reg [15:0] sequencer0_mark_tag;
 reg [15:0] sequencer0_command_header0_allowed_high;
 reg [15:0] sequencer0_command_header0_allowed_low;
@@ -3542,7 +3544,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
 end
 
 
-always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits, sequencer0_bad_axes) begin: sequencer0_check
+always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_axes, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits) begin: sequencer0_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -3701,8 +3703,8 @@ always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, seque
         dda_xe = $signed(sequencer0_operand_2[24-1:0]);
         dda_ye = $signed(sequencer0_operand_3[24-1:0]);
     end
-    sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
-    sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
+    sequencer0_count_x = $signed(sequencer0_operand_0[24-1:0]);
+    sequencer0_count_y = $signed(sequencer0_operand_1[24-1:0]);
     set_index = sequencer0_header[4-1:0];
     set_value = sequencer0_operand_0;
     sequencer0_mark_tag = sequencer0_header[16-1:0];
@@ -5098,7 +5100,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
@@ -5112,12 +5114,12 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
     end
     else begin
         direct_pulse0_command_load = (seq_load && pulse_source0_pulses_mask[0]);
-        direct_pulse0_command_count = sequencer0_pulses_count_x;
+        direct_pulse0_command_count = sequencer0_count_x;
     end
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
@@ -5131,7 +5133,7 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
     end
     else begin
         direct_pulse1_command_load = (seq_load && pulse_source0_pulses_mask[1]);
-        direct_pulse1_command_count = sequencer0_pulses_count_y;
+        direct_pulse1_command_count = sequencer0_count_y;
     end
 end
 

@@ -750,6 +750,8 @@ reg card1_card_core1_regs_fifo2_sequencer2_bad_set_index;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_variant;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_count_x;
+reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_count_y;
 wire card1_card_core1_regs_fifo2_sequencer2_discard;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
@@ -796,8 +798,6 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xs;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low;
@@ -1136,6 +1136,7 @@ reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near;
 wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_cmd_iterate;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference;
@@ -5871,7 +5872,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits, card1_card_core1_regs_fifo2_sequencer2_bad_axes) begin: card1_card_core1_regs_fifo2_sequencer2_check
+always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_axes, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -6030,8 +6031,8 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
         card1_card_core1_regs_fifo2_sequencer2_dda_xe = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_2[24-1:0]);
         card1_card_core1_regs_fifo2_sequencer2_dda_ye = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_3[24-1:0]);
     end
-    card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
-    card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+    card1_card_core1_regs_fifo2_sequencer2_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+    card1_card_core1_regs_fifo2_sequencer2_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
     card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
     card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
     card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
@@ -7427,7 +7428,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7441,12 +7442,12 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7460,7 +7461,7 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_count_y;
     end
 end
 
@@ -8731,6 +8732,7 @@ end
 
 assign card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished)));
 assign card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending));
+assign card1_card_core1_dda_axes1_dda_arc2_dda_run2_cmd_iterate = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending));
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_decision
