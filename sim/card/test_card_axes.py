@@ -15,7 +15,7 @@ from myhdl import block, instance
 from models import instructions as isa
 from models import registers as regmap
 from models.axes import PLANES
-from models.commands import command_words, decode_words
+from models.commands import PulseCommand, command_words, decode_words
 from models.dda_axes import check_move, with_iterations
 from models.dda_plan import ArcCommand, AxesLineCommand
 from models.parameters import Build
@@ -177,4 +177,23 @@ def test_three_axis_card_runs_helices_in_every_plane():
     words = [word for move in HELICES for word in command_words(move)]
     points = run_axes("card_axes_helices", 3, motion(words, results))
     assert points == axes_path(HELICES, 3)
+    assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
+
+
+# PULSE on any of the card's axes: Z alone, X and Z, the two-axis form (X, Y), Y alone
+PULSES = [PulseCommand((0, 0, 5)), PulseCommand((-3, 0, 4)), PulseCommand((2, -2)), PulseCommand((0, 3, 0))]
+
+
+def test_three_axis_card_pulses_any_axis_mask():
+    results = {}
+    words = [word for pulse in PULSES for word in command_words(pulse)]
+    points = run_axes("card_axes_pulses", 3, motion(words, results))
+    # golden: the counts as the decoder reads the stream (models.commands), axis by axis, one step a point
+    commands = decode_words(words)
+    assert [c.counts for c in commands] == [(0, 0, 5), (-3, 0, 4), (2, -2), (0, 3)]
+    for axis in range(3):
+        moves = [b[axis] - a[axis] for a, b in zip(points, points[1:]) if b[axis] != a[axis]]
+        wanted = [step for c in commands for count in [c.counts[axis] if axis < len(c.counts) else 0]
+                  for step in [1 if count > 0 else -1] * abs(count)]
+        assert moves == wanted, f"axis {axis}"
     assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
