@@ -727,15 +727,13 @@ reg card_core0_regs_fifo1_sequencer1_bad_set_index;
 reg card_core0_regs_fifo1_sequencer1_bad_variant;
 reg [3:0] card_core0_regs_fifo1_sequencer1_coord_mask;
 reg [3:0] card_core0_regs_fifo1_sequencer1_count_mask;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_count_x;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_count_y;
 wire card_core0_regs_fifo1_sequencer1_discard;
 reg [31:0] card_core0_regs_fifo1_sequencer1_dwell_left;
 reg [3:0] card_core0_regs_fifo1_sequencer1_fetched;
 reg card_core0_regs_fifo1_sequencer1_finishing;
 reg [16:0] card_core0_regs_fifo1_sequencer1_header;
 wire card_core0_regs_fifo1_sequencer1_issue;
-reg card_core0_regs_fifo1_sequencer1_line_in;
+wire card_core0_regs_fifo1_sequencer1_line_in;
 wire card_core0_regs_fifo1_sequencer1_motion_done;
 reg [3:0] card_core0_regs_fifo1_sequencer1_next_count;
 reg [3:0] card_core0_regs_fifo1_sequencer1_next_error;
@@ -753,6 +751,8 @@ reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
+wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
+wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
 reg card_core0_regs_fifo1_sequencer1_arriving_moves;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
@@ -4861,6 +4861,15 @@ always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register
 end
 
 
+
+assign card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+
+
+
+assign card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
+assign card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
+
+
 always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
     case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
@@ -4952,10 +4961,9 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arri
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
+always @(card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
     reg [4-1:0] taken;
     integer index;
-    card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
     taken = 4'h0;
     if ((card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched != 0) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard))) begin
         for (index=4-1; index>=0; index=index-1) begin
@@ -5200,8 +5208,6 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
         card_core0_regs_fifo1_sequencer1_dda_xe = $signed(card_core0_regs_fifo1_sequencer1_operand_2[24-1:0]);
         card_core0_regs_fifo1_sequencer1_dda_ye = $signed(card_core0_regs_fifo1_sequencer1_operand_3[24-1:0]);
     end
-    card_core0_regs_fifo1_sequencer1_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-    card_core0_regs_fifo1_sequencer1_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
     card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
     card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
     card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
@@ -6597,7 +6603,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6611,12 +6617,12 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
-        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_count_x;
+        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -6630,7 +6636,7 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
-        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_count_y;
+        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
     end
 end
 

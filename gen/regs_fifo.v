@@ -636,15 +636,13 @@ reg sequencer0_bad_set_index;
 reg sequencer0_bad_variant;
 reg [3:0] sequencer0_coord_mask;
 reg [3:0] sequencer0_count_mask;
-reg signed [23:0] sequencer0_count_x;
-reg signed [23:0] sequencer0_count_y;
 wire sequencer0_discard;
 reg [31:0] sequencer0_dwell_left;
 reg [3:0] sequencer0_fetched;
 reg sequencer0_finishing;
 reg [16:0] sequencer0_header;
 wire sequencer0_issue;
-reg sequencer0_line_in;
+wire sequencer0_line_in;
 wire sequencer0_motion_done;
 reg [3:0] sequencer0_next_count;
 reg [3:0] sequencer0_next_error;
@@ -662,6 +660,8 @@ reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
+wire signed [23:0] sequencer0_pulses_count_x;
+wire signed [23:0] sequencer0_pulses_count_y;
 reg sequencer0_arriving_has_operands;
 reg sequencer0_arriving_moves;
 reg [3:0] sequencer0_arriving_operands;
@@ -3364,6 +3364,15 @@ always @(posedge clock) begin: sequencer0_operand_register3_hold
 end
 
 
+
+assign sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
+
+
+
+assign sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
+assign sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
+
+
 always @(sequencer0_opcode) begin: sequencer0_lookup_coords
     case (sequencer0_opcode)
         0: sequencer0_coord_mask = 0;
@@ -3455,10 +3464,9 @@ always @(fifo_empty, sequencer0_arriving_has_operands, sequencer0_state, sequenc
 end
 
 
-always @(fifo_dout, sequencer0_slots_left, sequencer0_word_due, sequencer_clear, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
+always @(sequencer0_word_due, sequencer_clear, sequencer0_slots_left, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
     reg [4-1:0] taken;
     integer index;
-    sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
     taken = 4'h0;
     if ((sequencer0_word_due && (sequencer0_fetched != 0) && (!sequencer_clear) && (!sequencer0_discard))) begin
         for (index=4-1; index>=0; index=index-1) begin
@@ -3703,8 +3711,6 @@ always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, seque
         dda_xe = $signed(sequencer0_operand_2[24-1:0]);
         dda_ye = $signed(sequencer0_operand_3[24-1:0]);
     end
-    sequencer0_count_x = $signed(sequencer0_operand_0[24-1:0]);
-    sequencer0_count_y = $signed(sequencer0_operand_1[24-1:0]);
     set_index = sequencer0_header[4-1:0];
     set_value = sequencer0_operand_0;
     sequencer0_mark_tag = sequencer0_header[16-1:0];
@@ -5100,7 +5106,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
@@ -5114,12 +5120,12 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
     end
     else begin
         direct_pulse0_command_load = (seq_load && pulse_source0_pulses_mask[0]);
-        direct_pulse0_command_count = sequencer0_count_x;
+        direct_pulse0_command_count = sequencer0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
@@ -5133,7 +5139,7 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
     end
     else begin
         direct_pulse1_command_load = (seq_load && pulse_source0_pulses_mask[1]);
-        direct_pulse1_command_count = sequencer0_count_y;
+        direct_pulse1_command_count = sequencer0_pulses_count_y;
     end
 end
 

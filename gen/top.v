@@ -750,15 +750,13 @@ reg card1_card_core1_regs_fifo2_sequencer2_bad_set_index;
 reg card1_card_core1_regs_fifo2_sequencer2_bad_variant;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_coord_mask;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_count_mask;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_count_x;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_count_y;
 wire card1_card_core1_regs_fifo2_sequencer2_discard;
 reg [31:0] card1_card_core1_regs_fifo2_sequencer2_dwell_left;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
 reg card1_card_core1_regs_fifo2_sequencer2_finishing;
 reg [16:0] card1_card_core1_regs_fifo2_sequencer2_header;
 wire card1_card_core1_regs_fifo2_sequencer2_issue;
-reg card1_card_core1_regs_fifo2_sequencer2_line_in;
+wire card1_card_core1_regs_fifo2_sequencer2_line_in;
 wire card1_card_core1_regs_fifo2_sequencer2_motion_done;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_count;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
@@ -776,6 +774,8 @@ reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
+wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
+wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
@@ -5692,6 +5692,15 @@ always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_re
 end
 
 
+
+assign card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+assign card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+
+
 always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
     case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
@@ -5783,10 +5792,9 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_seq
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
+always @(card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
     reg [4-1:0] taken;
     integer index;
-    card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
     taken = 4'h0;
     if ((card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched != 0) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard))) begin
         for (index=4-1; index>=0; index=index-1) begin
@@ -6031,8 +6039,6 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
         card1_card_core1_regs_fifo2_sequencer2_dda_xe = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_2[24-1:0]);
         card1_card_core1_regs_fifo2_sequencer2_dda_ye = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_3[24-1:0]);
     end
-    card1_card_core1_regs_fifo2_sequencer2_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
-    card1_card_core1_regs_fifo2_sequencer2_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
     card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
     card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
     card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
@@ -7428,7 +7434,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7442,12 +7448,12 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_count_x;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -7461,7 +7467,7 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_count_y;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
     end
 end
 

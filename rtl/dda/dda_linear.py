@@ -1,5 +1,5 @@
 """The N-axis line: per-axis accumulators against the threshold T = max |d_i|, one iteration a clock."""
-from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv
 
 from models.dda_build import COORD_WIDTH
 from models.parameters import AXES
@@ -61,18 +61,18 @@ def dda_linear(clock, reset, line, steps):
         line.busy.next = line.left != 0
         iterate.next = line.advance and moving_any != 0
         if line.helix:
-            half.next = line.iterations >> 1
+            half.next = concat(intbv(0)[thr_width + 1 - len(line.iterations):], line.iterations[len(line.iterations):1])
         else:
-            half.next = largest >> 1
+            half.next = concat(intbv(0)[thr_width + 1 - width:], largest[width:1])
 
     @always_seq(clock.posedge, reset=reset)
     def count_iterations():
         if line.load:
             if line.helix:
-                threshold.next = line.iterations
+                threshold.next = concat(intbv(0)[thr_width - len(line.iterations):], line.iterations)
                 line.left.next = 0
             else:
-                threshold.next = largest
+                threshold.next = concat(intbv(0)[thr_width - width:], largest)
                 line.left.next = largest
         elif iterate and line.left != 0:
             line.left.next = line.left - 1
@@ -120,7 +120,7 @@ def _axis_line(clock, reset, load, iterate, magnitude, positive, half, threshold
         step.next = 0
         if load:
             acc.next = half
-            integrand.next = magnitude
+            integrand.next = concat(intbv(0)[len(threshold) - width:], magnitude)
             steps_left.next = magnitude
             direction.next = positive
         elif iterate:

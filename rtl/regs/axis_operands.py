@@ -1,5 +1,5 @@
 """What the sequencer of a card of more than two axes hands on from an N-axis command's operands."""
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK
@@ -78,7 +78,7 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
                     pulses.mask.next = word[mask_lsb + axes:mask_lsb]
         elif operand_in and is_arc and position > AXIS_SLOT:
             # a helix displacement: ITERATIONS (taken before it) is not 0 and at least its magnitude
-            if iterations == 0 or magnitude > iterations:
+            if iterations == 0 or concat(intbv(0)[len(iterations) - width:], magnitude) > iterations:
                 bad_helix.next = 1
 
     return deltas, counts, clearing, hand_on, arriving_magnitude, take_header

@@ -1,5 +1,5 @@
 """A command's header word read as the sequencer needs it: framing, checks and the plane."""
-from myhdl import Signal, always_comb, block, intbv
+from myhdl import ConcatSignal, Signal, always_comb, block, concat, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK, axes_of
@@ -86,6 +86,9 @@ def command_header(word, header):
     xy_only = axes == 2   # a card of two axes turns arcs in X, Y only (models.dda_axes.check_move)
     # a card of more axes: XS .. YE, ITERATIONS, then one slot per axis (rtl/regs/axis_operands.py)
     arc_slots = (1 << ITERATIONS_SLOT) - 1
+    xy_slots = XY_MASK << AXIS_SLOT
+    helix_slots = (1 << (ITERATIONS_SLOT + 1)) - 1   # XS .. YE and ITERATIONS
+    plane_axes = Signal(intbv(0)[axes:])
     helix_on_plane = Signal(bool(0))
 
     fixed_count, zero_count, lead_count, ones = (Signal(intbv(0)[4:]) for _ in range(4))
@@ -147,13 +150,13 @@ def command_header(word, header):
             header.slots.next = all_slots
             if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
                 if word[mask_msb:mask_lsb] == 0:
-                    header.slots.next = XY_MASK << AXIS_SLOT
+                    header.slots.next = xy_slots
                 else:
-                    header.slots.next = word[mask_lsb + axes:mask_lsb] << AXIS_SLOT
+                    header.slots.next = concat(word[mask_lsb + axes:mask_lsb], intbv(0)[AXIS_SLOT:])
             elif word[32:isa.OPCODE_LSB] == arc_op:
                 header.slots.next = arc_slots
                 if word[mask_msb:mask_lsb] != 0:
-                    header.slots.next = arc_slots | (1 << ITERATIONS_SLOT) | (word[mask_lsb + axes:mask_lsb] << AXIS_SLOT)
+                    header.slots.next = concat(word[mask_lsb + axes:mask_lsb], intbv(helix_slots)[AXIS_SLOT:])
 
         @always_comb
         def plane():
@@ -164,15 +167,14 @@ def command_header(word, header):
 
         @always_comb
         def helix_plane():
-            # a HELIX axis that is the plane's u or v (X, Y for U_AXIS = V_AXIS = 0)
-            on_plane = False
-            for axis in range(axes):
-                if word[mask_lsb + axis] and (word[u_msb:u_lsb] == axis or word[v_msb:v_lsb] == axis or (
-                        axis == 1 and word[u_msb:u_lsb] == 0 and word[v_msb:v_lsb] == 0)):
-                    on_plane = True
-            helix_on_plane.next = on_plane
+            # a HELIX axis that is the plane's u or v
+            helix_on_plane.next = (word[mask_lsb + axes:mask_lsb] & plane_axes) != 0
 
-        checks = [check_axes_n, slots_n, plane, helix_plane]
+        # the plane's axes as a mask, by (V_AXIS, U_AXIS): X, Y for 0, 0
+        plane_rom = tuple(((1 << (index & 7)) | (1 << (index >> 3)) if index else XY_MASK) & ((1 << axes) - 1)
+                          for index in range(64))
+        checks = [check_axes_n, slots_n, plane, helix_plane,
+                  _lookup(ConcatSignal(word(v_msb, v_lsb), word(u_msb, u_lsb)), plane_rom, plane_axes)]
     return lookups, frame, checks
 
 

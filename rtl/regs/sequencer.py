@@ -136,10 +136,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     # the axis fields' RANGE rules: the header's, and on more than two axes a helix's operands'
     bad_helix = Signal(bool(0))
     bad_fields = bad_axes if axes == 2 else Signal(bool(0))
-    # the PULSE command's counts: X's and Y's from operands 0 and 1 on two axes, from the axes' slots on more
-    count_x, count_y = ((pulses.count_x, pulses.count_y) if axes == 2
-                        else tuple(Signal(intbv(0, min=-(1 << (count_bits - 1)), max=1 << (count_bits - 1)))
-                                   for _ in range(2)))
+
     arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
     kept = (1 << slot_count) - 1
     coord_operands = _opcode_rom(lambda op: _operand_mask(op, "coord") & kept)
@@ -200,9 +197,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     @always_comb
     def operand_routing():
-        # the lowest register left takes an arriving operand word; a LINE header clears its axes' registers
-        line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
-                        and not control.clear and not discard)
+        # the lowest register left takes an arriving operand word
         taken = intbv(0)[slot_count:]
         if word_due and fetched != 0 and not control.clear and not discard:
             for index in downrange(slot_count):
@@ -369,8 +364,6 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
             dda.ys.next = operand_1[coord_width:].signed()
             dda.xe.next = operand_2[coord_width:].signed()
             dda.ye.next = operand_3[coord_width:].signed()
-        count_x.next = operand_0[count_bits:].signed()
-        count_y.next = operand_1[count_bits:].signed()
         set_port.index.next = header[index_msb:index_lsb]
         set_port.value.next = operand_0
         mark.tag.next = header[tag_msb:tag_lsb]
@@ -383,8 +376,18 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
     if axes == 2:
-        # the PULSE command's two-axis form; the arcs turn in X, Y only
-        axis_units = []
+        # a LINE header clears its axes' registers; the PULSE command's two-axis form; arcs in X, Y only
+        @always_comb
+        def line_header():
+            line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
+                            and not control.clear and not discard)
+
+        @always_comb
+        def pulse_counts():
+            pulses.count_x.next = operand_0[count_bits:].signed()
+            pulses.count_y.next = operand_1[count_bits:].signed()
+
+        axis_units = [line_header, pulse_counts]
     else:
         # the plane and a PULSE's mask, taken with the header; a LINE's or helix's displacement of axis i
         # and a PULSE's count of axis i in operand register AXIS_SLOT + i; a helix's RANGE rules

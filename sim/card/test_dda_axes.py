@@ -111,6 +111,15 @@ def drive(cmd, axes_cmd, move):
             axes_cmd.iterations.next = move.iterations or 0
 
 
+def model_iterations(move, axes):
+    """The iterations of ``move`` in the golden model."""
+    model, count = MoveIterator(move, axes=axes, coord_width=COORD_WIDTH), 0
+    while not model.finished:
+        model.step()
+        count += 1
+    return count
+
+
 @block
 def _bench(ports, cosim, step, cycles):
     clock, reset = ports["clock"], ports["reset"]
@@ -146,7 +155,8 @@ def run_chain(axes, seed, count, cosim, helices=False):
         cmd.advance.next = advance
         state["advanced"] = advance
 
-    cycles = 40 * 120 * count
+    # the chain's iterations at the advance's mean rate (0.41 a clock) with room, and each move's set-up
+    cycles = int(sum(model_iterations(move, axes) for move in moves) / 0.35) + 150 * count + 400
     name = f"dda_axes_{axes}_{seed}{'_helix' if helices else ''}_{'icarus' if cosim else 'myhdl'}"
     run_traced(_bench(ports, cosim, step, cycles), name)
     assert not waiting, f"{len(waiting)} moves never started"
