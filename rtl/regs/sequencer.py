@@ -43,20 +43,23 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     Ports (``rtl/interfaces/``): ``fifo`` (``FifoRead``), ``control``
     (``SequencerControl``), ``dda`` (``DdaPort``), ``axes_cmd``
-    (``AxesCommand``: the plane, and a LINE's displacements on a card of
-    more than two axes), ``pulses`` (``PulseCommand``), ``set_port``
+    (``AxesCommand``: on a card of more than two axes the plane, a LINE's or
+    helix's displacements and an ARC's ITERATIONS), ``pulses`` (``PulseCommand``), ``set_port``
     (``SetPort``), ``mark`` (``MarkPort``).
     Fetch: the FIFO is read one word per clock (``fifo.pop``; the word
     arrives in ``fifo.dout`` the next clock) into the next-instruction
     register while the current command runs; ``command_header`` frames it
     by the N-axis form (docs/axes.md) and each operand goes to the lowest
-    operand register left of those the header names (a LINE's: its axes',
-    the others are cleared; otherwise in order), so a LINE's displacement of
-    axis i is in register i.  Execute: LINE/ARC drive
+    operand register left of those the header names (two axes: a LINE's
+    its axes', the others are cleared, otherwise in order, so a LINE's
+    displacement of axis i is in register i; more axes: ``axis_operands``'
+    slots, XS .. YE, ITERATIONS, then axis i's displacement or count in
+    register 5 + i).  Execute: LINE/ARC drive
     ``dda`` (a one-clock ``start`` with the operands and BLEND) as soon as
     the DDA is ``ready``, also while the move before still runs, so chained
-    segments leave no gap; PULSE loads both direct pulse generators
-    (``pulses.load``, ``pulses.count_*``) and waits while ``pulses.busy``;
+    segments leave no gap; PULSE loads the direct pulse generators of its
+    axes (``pulses.load``, ``pulses.count_*``, ``pulses.mask``; X and Y on a
+    card of two axes) and waits while ``pulses.busy``;
     DWELL counts clocks once the pulse outputs are quiet
     (``pulses.outputs_busy`` low: no step request pending and the last step
     has left the pins); SET gives a ``set_port.strobe`` with its index and
