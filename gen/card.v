@@ -892,7 +892,7 @@ reg [3:0] card_core0_regs_fifo1_sequencer1_fetched;
 reg card_core0_regs_fifo1_sequencer1_finishing;
 reg [16:0] card_core0_regs_fifo1_sequencer1_header;
 wire card_core0_regs_fifo1_sequencer1_issue;
-reg card_core0_regs_fifo1_sequencer1_line_in;
+wire card_core0_regs_fifo1_sequencer1_line_in;
 wire card_core0_regs_fifo1_sequencer1_motion_done;
 reg [3:0] card_core0_regs_fifo1_sequencer1_next_count;
 reg [3:0] card_core0_regs_fifo1_sequencer1_next_error;
@@ -910,6 +910,8 @@ reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
+wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
+wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
 reg card_core0_regs_fifo1_sequencer1_arriving_moves;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
@@ -932,8 +934,6 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xs;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ys;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xe;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
-reg signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
 reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_high;
 reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_low;
@@ -1272,6 +1272,7 @@ reg card_core0_dda_axes0_dda_arc1_dda_run1_step_inward_near;
 wire card_core0_dda_axes0_dda_arc1_dda_run1_step_last;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_pending;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_finished;
+wire card_core0_dda_axes0_dda_arc1_dda_run1_cmd_iterate;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_new_piece;
 reg card_core0_dda_axes0_dda_arc1_dda_run1_step_blend;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_left1_difference;
@@ -5463,6 +5464,15 @@ always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register
 end
 
 
+
+assign card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+
+
+
+assign card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
+assign card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
+
+
 always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
     case (card_core0_regs_fifo1_sequencer1_opcode)
         0: card_core0_regs_fifo1_sequencer1_coord_mask = 0;
@@ -5554,10 +5564,9 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arri
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
+always @(card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
     reg [4-1:0] taken;
     integer index;
-    card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
     taken = 4'h0;
     if ((card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched != 0) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard))) begin
         for (index=4-1; index>=0; index=index-1) begin
@@ -5643,7 +5652,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_f
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits, card_core0_regs_fifo1_sequencer1_bad_axes) begin: card_core0_regs_fifo1_sequencer1_check
+always @(card_core0_regs_fifo1_sequencer1_bad_variant, card_core0_regs_fifo1_sequencer1_bad_set_index, card_core0_regs_fifo1_sequencer1_bad_axes, card_core0_regs_fifo1_sequencer1_bad_opcode, card_core0_regs_fifo1_sequencer1_bad_operand, card_core0_regs_fifo1_sequencer1_bad_header_bits) begin: card_core0_regs_fifo1_sequencer1_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -5802,8 +5811,6 @@ always @(card_core0_regs_fifo1_sequencer1_operand_0, card_core0_regs_fifo1_seque
         card_core0_regs_fifo1_sequencer1_dda_xe = $signed(card_core0_regs_fifo1_sequencer1_operand_2[24-1:0]);
         card_core0_regs_fifo1_sequencer1_dda_ye = $signed(card_core0_regs_fifo1_sequencer1_operand_3[24-1:0]);
     end
-    card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-    card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
     card_core0_regs_fifo1_set_index = card_core0_regs_fifo1_sequencer1_header[4-1:0];
     card_core0_regs_fifo1_set_value = card_core0_regs_fifo1_sequencer1_operand_0;
     card_core0_regs_fifo1_sequencer1_mark_tag = card_core0_regs_fifo1_sequencer1_header[16-1:0];
@@ -8503,6 +8510,7 @@ end
 
 assign card_core0_dda_axes0_dda_arc1_dda_check1_move_take = (card_core0_dda_axes0_dda_arc1_dda_check1_move_offer && ((!card_core0_dda_axes0_dda_arc1_dda_run1_active) || (card_core0_dda_axes0_dda_arc1_dda_run1_step_pending && card_core0_dda_axes0_dda_arc1_dda_run1_step_finished)));
 assign card_core0_dda_axes0_dda_arc1_dda_run1_taking = (card_core0_dda_axes0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_pending));
+assign card_core0_dda_axes0_dda_arc1_dda_run1_cmd_iterate = (card_core0_dda_axes0_dda_arc1_dda_run1_active && card_core0_regs_fifo1_dda_advance && (!card_core0_dda_axes0_dda_arc1_dda_run1_step_pending));
 
 
 always @(posedge clock, negedge card_core0_dda_reset) begin: card_core0_dda_axes0_dda_arc1_dda_run1_decision

@@ -18,6 +18,7 @@ module dda_arc (
     cmd_xe,
     cmd_ye,
     cmd_advance,
+    cmd_iterate,
     cmd_busy,
     cmd_done,
     cmd_error,
@@ -75,6 +76,8 @@ input signed [23:0] cmd_ys;
 input signed [23:0] cmd_xe;
 input signed [23:0] cmd_ye;
 input cmd_advance;
+output cmd_iterate;
+wire cmd_iterate;
 output cmd_busy;
 wire cmd_busy;
 output cmd_done;
@@ -1446,6 +1449,7 @@ end
 
 assign dda_check0_move_take = (dda_check0_move_offer && ((!dda_run0_active) || (dda_run0_step_pending && dda_run0_step_finished)));
 assign dda_run0_taking = (dda_run0_active && cmd_advance && (!dda_run0_step_pending));
+assign cmd_iterate = (dda_run0_active && cmd_advance && (!dda_run0_step_pending));
 
 
 always @(posedge clock, negedge reset) begin: dda_run0_decision

@@ -31,6 +31,7 @@ module regs_fifo (
     dda_xe,
     dda_ye,
     dda_advance,
+    dda_iterate,
     dda_busy,
     dda_done,
     dda_error,
@@ -147,6 +148,7 @@ output signed [23:0] dda_ye;
 reg signed [23:0] dda_ye;
 output dda_advance;
 wire dda_advance;
+input dda_iterate;
 input dda_busy;
 input dda_done;
 input dda_error;
@@ -799,7 +801,7 @@ reg [3:0] sequencer0_fetched;
 reg sequencer0_finishing;
 reg [16:0] sequencer0_header;
 wire sequencer0_issue;
-reg sequencer0_line_in;
+wire sequencer0_line_in;
 wire sequencer0_motion_done;
 reg [3:0] sequencer0_next_count;
 reg [3:0] sequencer0_next_error;
@@ -817,6 +819,8 @@ reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
+wire signed [23:0] sequencer0_pulses_count_x;
+wire signed [23:0] sequencer0_pulses_count_y;
 reg sequencer0_arriving_has_operands;
 reg sequencer0_arriving_moves;
 reg [3:0] sequencer0_arriving_operands;
@@ -825,8 +829,6 @@ reg sequencer0_arriving_known;
 reg sequencer0_arriving_reserved;
 reg sequencer0_arriving_out_of_range;
 reg sequencer0_mark_strobe;
-reg signed [23:0] sequencer0_pulses_count_x;
-reg signed [23:0] sequencer0_pulses_count_y;
 reg [15:0] sequencer0_mark_tag;
 reg [15:0] sequencer0_command_header0_allowed_high;
 reg [15:0] sequencer0_command_header0_allowed_low;
@@ -3965,6 +3967,15 @@ always @(posedge clock) begin: sequencer0_operand_register3_hold
 end
 
 
+
+assign sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
+
+
+
+assign sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
+assign sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
+
+
 always @(sequencer0_opcode) begin: sequencer0_lookup_coords
     case (sequencer0_opcode)
         0: sequencer0_coord_mask = 0;
@@ -4056,10 +4067,9 @@ always @(fifo_empty, sequencer0_arriving_has_operands, sequencer0_state, sequenc
 end
 
 
-always @(fifo_dout, sequencer0_slots_left, sequencer0_word_due, sequencer_clear, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
+always @(sequencer0_word_due, sequencer_clear, sequencer0_slots_left, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
     reg [4-1:0] taken;
     integer index;
-    sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
     taken = 4'h0;
     if ((sequencer0_word_due && (sequencer0_fetched != 0) && (!sequencer_clear) && (!sequencer0_discard))) begin
         for (index=4-1; index>=0; index=index-1) begin
@@ -4145,7 +4155,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_fetch
 end
 
 
-always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits, sequencer0_bad_axes) begin: sequencer0_check
+always @(sequencer0_bad_variant, sequencer0_bad_set_index, sequencer0_bad_axes, sequencer0_bad_opcode, sequencer0_bad_operand, sequencer0_bad_header_bits) begin: sequencer0_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -4304,8 +4314,6 @@ always @(sequencer0_operand_0, sequencer0_operand_3, sequencer0_operand_1, seque
         dda_xe = $signed(sequencer0_operand_2[24-1:0]);
         dda_ye = $signed(sequencer0_operand_3[24-1:0]);
     end
-    sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
-    sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
     set_index = sequencer0_header[4-1:0];
     set_value = sequencer0_operand_0;
     sequencer0_mark_tag = sequencer0_header[16-1:0];

@@ -915,7 +915,7 @@ reg [3:0] card1_card_core1_regs_fifo2_sequencer2_fetched;
 reg card1_card_core1_regs_fifo2_sequencer2_finishing;
 reg [16:0] card1_card_core1_regs_fifo2_sequencer2_header;
 wire card1_card_core1_regs_fifo2_sequencer2_issue;
-reg card1_card_core1_regs_fifo2_sequencer2_line_in;
+wire card1_card_core1_regs_fifo2_sequencer2_line_in;
 wire card1_card_core1_regs_fifo2_sequencer2_motion_done;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_count;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_next_error;
@@ -933,6 +933,8 @@ reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
+wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
+wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
@@ -955,8 +957,6 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xs;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
-reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low;
@@ -1295,6 +1295,7 @@ reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_inward_near;
 wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_last;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_run2_cmd_iterate;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_new_piece;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_blend;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_left2_difference;
@@ -6294,6 +6295,15 @@ always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_re
 end
 
 
+
+assign card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+assign card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+
+
 always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
     case (card1_card_core1_regs_fifo2_sequencer2_opcode)
         0: card1_card_core1_regs_fifo2_sequencer2_coord_mask = 0;
@@ -6385,10 +6395,9 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_seq
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
+always @(card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
     reg [4-1:0] taken;
     integer index;
-    card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
     taken = 4'h0;
     if ((card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched != 0) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard))) begin
         for (index=4-1; index>=0; index=index-1) begin
@@ -6474,7 +6483,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits, card1_card_core1_regs_fifo2_sequencer2_bad_axes) begin: card1_card_core1_regs_fifo2_sequencer2_check
+always @(card1_card_core1_regs_fifo2_sequencer2_bad_variant, card1_card_core1_regs_fifo2_sequencer2_bad_set_index, card1_card_core1_regs_fifo2_sequencer2_bad_axes, card1_card_core1_regs_fifo2_sequencer2_bad_opcode, card1_card_core1_regs_fifo2_sequencer2_bad_operand, card1_card_core1_regs_fifo2_sequencer2_bad_header_bits) begin: card1_card_core1_regs_fifo2_sequencer2_check
     reg [4-1:0] result;
     result = 4'h0;
     result = 0;
@@ -6633,8 +6642,6 @@ always @(card1_card_core1_regs_fifo2_sequencer2_operand_0, card1_card_core1_regs
         card1_card_core1_regs_fifo2_sequencer2_dda_xe = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_2[24-1:0]);
         card1_card_core1_regs_fifo2_sequencer2_dda_ye = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_3[24-1:0]);
     end
-    card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
-    card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
     card1_card_core1_regs_fifo2_set_index = card1_card_core1_regs_fifo2_sequencer2_header[4-1:0];
     card1_card_core1_regs_fifo2_set_value = card1_card_core1_regs_fifo2_sequencer2_operand_0;
     card1_card_core1_regs_fifo2_sequencer2_mark_tag = card1_card_core1_regs_fifo2_sequencer2_header[16-1:0];
@@ -9334,6 +9341,7 @@ end
 
 assign card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_take = (card1_card_core1_dda_axes1_dda_arc2_dda_check2_move_offer && ((!card1_card_core1_dda_axes1_dda_arc2_dda_run2_active) || (card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending && card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_finished)));
 assign card1_card_core1_dda_axes1_dda_arc2_dda_run2_taking = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending));
+assign card1_card_core1_dda_axes1_dda_arc2_dda_run2_cmd_iterate = (card1_card_core1_dda_axes1_dda_arc2_dda_run2_active && card1_card_core1_regs_fifo2_dda_advance && (!card1_card_core1_dda_axes1_dda_arc2_dda_run2_step_pending));
 
 
 always @(posedge clock, negedge card1_card_core1_dda_reset) begin: card1_card_core1_dda_axes1_dda_arc2_dda_run2_decision

@@ -22,7 +22,7 @@ from host.encoder_path import encoder_samples, measure
 from host.card import Card
 from host.machine_io import MachineStopped
 from host.check import check
-from host.geometry import Arc, dimension
+from host.geometry import dimension
 from host.pin_measure import deviation, junction_gaps, pin_moves, pin_moves_of_points, pin_points
 from host.planner import plan
 from host.selftest import selftest
@@ -35,16 +35,6 @@ from models.axes import names
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
 SETTLE_SECONDS = 1e-4   # card time between two looks at the encoders after the job, until they stand
 SETTLE_LOOKS = 200
-
-
-def refuse_unbuilt(drawing):
-    """ProgramError at the first line of ``drawing`` the card does not run yet
-    (docs/axes.md: an ARC with HELIX is refused, RANGE, not built yet), before
-    anything moves."""
-    for item in drawing:
-        if isinstance(item, Arc) and item.rise:
-            raise ProgramError(item.where, "a helical arc (an axis outside the plane moves with it): the card "
-                                           "does not run HELIX yet (docs/axes.md)")
 
 
 def add_commands(commands, positive, scales, count, axis_count):
@@ -177,7 +167,6 @@ def run_command(options, refuse, per_axis):
             raise ValueError(f"--axes {options.axes}: the card reports {axes} axes (BUILD.AXES)")
         if path.suffix.lower() != ".svg" and dimension(drawing) > axes:
             gcode.parse(path.read_text(), path.name, axes)  # refuses the first line that needs more axes
-        refuse_unbuilt(drawing)
         machine = card.configure(steps_per_mm=per_axis(options.steps_per_mm, axes, _raise),
                                  step_width_ns=options.step_width_ns,
                                  dir_setup_ns=options.dir_setup_ns, dir_hold_ns=options.dir_hold_ns,

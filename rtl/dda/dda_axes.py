@@ -15,9 +15,10 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
 
     Ports: ``cmd`` (``DdaPort``, as ``dda_arc`` takes it: ``start`` with the
     command lines, ``advance``; ``ready``, ``busy``, ``done``, ``error``,
-    ``quadrant``, ``stop_left``), ``axes_cmd`` (``AxesCommand``: the plane,
-    a LINE's displacements; read with ``start``), ``steps`` (``AxisPulses``
-    of N axes).  Parameters: none; widths and variants from ``cmd``.
+    ``quadrant``, ``stop_left``, ``iterate``), ``axes_cmd``
+    (``AxesCommand``: the plane, a LINE's or helix's displacements, an ARC's
+    ITERATIONS; read with ``start``), ``steps`` (``AxisPulses`` of N axes).
+    Parameters: none; widths and variants from ``cmd``.
 
     The arc DDA (``dda_arc``, unchanged) runs every ARC in its (u, v)
     coordinates; ``_plane_queue`` keeps the plane of the move it runs and of
@@ -34,7 +35,13 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
     line's iterations left (all ones while it blends), the arc DDA's
     otherwise; ``error`` of an arc rejected while a line runs comes when
     the line has ended, and holds ``ready`` low so that nothing starts
-    after it.
+    after it.  A helix (an ARC with ITERATIONS K not 0) puts its other
+    axes in ``dda_linear`` too, threshold K (``models.dda_axes.Follower``):
+    they load once its arc is the arc DDA's only or running move and step
+    in the arc's iterations (``iterate``); the move's ``done`` comes when
+    the arc and every axis have ended, and axes still moving after the arc
+    (a K larger than the arc's) go on at the feed's ``advance`` while the
+    arc DDA waits.
 
         clock    _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         advance  _/~~~\\___/~~~\\___/~~~\\_     last line iteration, then the arc's first
@@ -54,11 +61,12 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
     for name in _SHARED:
         setattr(arc, name, getattr(cmd, name))
     line = LinearPort(axes, cmd.coord_width)
+    moves = Signal(intbv(0, min=0, max=3))   # moves in the arc DDA: started and not ended
     line_steps = AxisPulses(axes)
     units = [dda_arc(clock, reset, arc, arc_steps),
-             _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run),
+             _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run, moves),
              named("linear", dda_linear(clock, reset, line, line_steps)),
-             _line_queue(clock, reset, cmd, axes_cmd, arc, line)]
+             _line_queue(clock, reset, cmd, axes_cmd, arc, line, moves)]
     units += [named(f"route_{axis}", _route_axis(arc_steps, u_run, v_run, axis, line_steps.step(axis),
                                                  line_steps.dir(axis), steps.step(axis), steps.dir(axis)))
               for axis in range(axes)]
@@ -66,14 +74,14 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
 
 
 @block
-def _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run):
+def _plane_queue(clock, reset, arc, axes_cmd, u_run, v_run, moves):
     """The plane (``u_run``, ``v_run``) of the move the arc DDA runs: a move's
     plane is taken at its ``start``, and becomes the running one then if no
     other move is in the arc DDA (or the one there ends in that clock), else
     at the ``done`` of the one before it.  A rejected move (``error``) ends
-    without ``done``: nothing else is in the arc DDA then."""
+    without ``done``: nothing else is in the arc DDA then.  ``moves``: the
+    moves in the arc DDA (started, not ended), 0 to 2."""
     u_next, v_next = Signal(intbv(0)[len(u_run):]), Signal(intbv(1)[len(v_run):])
-    moves = Signal(intbv(0, min=0, max=3))   # moves started and not ended
 
     @always_seq(clock.posedge, reset=reset)
     def follow():
@@ -118,14 +126,22 @@ def _route_axis(arc_steps, u_run, v_run, axis, line_step, line_dir, step, direct
 
 
 @block
-def _line_queue(clock, reset, cmd, axes_cmd, arc, line):
-    """A LINE started on ``cmd`` waits in ``line``'s magnitudes and signs
-    (``_line_magnitude``) until the moves before it have ended (the line
-    unit and the arc DDA idle), then loads.  The rest of ``cmd``: the arc
-    DDA's, merged with the line unit's (see ``dda_axes``)."""
+def _line_queue(clock, reset, cmd, axes_cmd, arc, line, moves):
+    """A LINE, or an ARC's helix (``axes_cmd.iterations`` not 0), started on
+    ``cmd`` waits in ``line``'s magnitudes and signs (``_line_magnitude``)
+    and ``iterations`` until the line unit is free, then loads: a line once
+    the moves before it have ended (the arc DDA idle too), a helix once its
+    arc is the arc DDA's only move (``moves``) or becomes its running one
+    (the ``done`` of the one before).  The rest of ``cmd``: the arc DDA's,
+    merged with the line unit's (see ``dda_axes``).  A helix's axes
+    (``own``) iterate in its arc's iterations (``arc.iterate``); those
+    with steps left when the arc ends go on ``alone`` at the feed's
+    ``advance``, the arc DDA waiting, and the move's ``done`` comes when
+    they end."""
     axes = line.axes
-    waiting, waiting_blend, blend, last, loaded, stale = (Signal(bool(0)) for _ in range(6))
-    take = Signal(bool(0))
+    waiting, waiting_helix, waiting_blend, blend, last, loaded, stale = (Signal(bool(0)) for _ in range(7))
+    helix, own, alone = (Signal(bool(0)) for _ in range(3))
+    take, load_line, load_helix = (Signal(bool(0)) for _ in range(3))
     live_error = Signal(bool(0))
     all_ones = (1 << len(cmd.stop_left)) - 1
     pad = len(cmd.stop_left) - len(line.left)
@@ -134,43 +150,70 @@ def _line_queue(clock, reset, cmd, axes_cmd, arc, line):
 
     @always_comb
     def hand_on():
-        take.next = cmd.start and cmd.line
+        take.next = cmd.start and (cmd.line or axes_cmd.iterations != 0)
         arc.start.next = cmd.start and not cmd.line
-        line.load.next = waiting and not line.busy and not arc.busy
+        load_line.next = waiting and not waiting_helix and not line.following and not arc.busy
+        load_helix.next = (waiting and waiting_helix and not line.following and not alone
+                           and (moves == 1 or arc.done))
+        arc.advance.next = cmd.advance and not line.busy and not alone and not (waiting and waiting_helix and moves == 1)
         line.advance.next = cmd.advance
-        arc.advance.next = cmd.advance and not line.busy
+        if helix and not alone:
+            line.advance.next = arc.iterate
+
+    @always_comb
+    def loading():
+        line.load.next = load_line or load_helix
+        line.helix.next = waiting_helix
 
     @always_seq(clock.posedge, reset=reset)
     def queue():
         if take:
             waiting.next = 1
+            waiting_helix.next = not cmd.line
             waiting_blend.next = cmd.blend
-        elif line.load:
+            line.iterations.next = axes_cmd.iterations
+        elif line.load or (waiting_helix and live_error):
             waiting.next = 0
         if line.load:
             blend.next = waiting_blend
+            helix.next = waiting_helix
         # the line's last iteration, with its last steps (the unit registers them at this edge)
         last.next = line.advance and line.left == 1
-        loaded.next = line.load
+        loaded.next = load_line
         # an arc's error stays until the arc DDA's next start: a line started since has seen it
         if cmd.start:
             stale.next = cmd.line
+        # a helix's axes are its arc's until it ends; those still moving then go on alone
+        if load_helix:
+            own.next = 1
+        elif arc.done:
+            own.next = 0
+        if own and arc.done and line.following:
+            alone.next = 1
+        elif not line.following:
+            alone.next = 0
 
     @always_comb
     def status():
         live_error.next = arc.error and not stale
         cmd.ready.next = arc.ready and not waiting and not live_error
-        cmd.busy.next = arc.busy or line.busy or waiting
-        cmd.done.next = arc.done or last or (loaded and line.left == 0)
-        cmd.error.next = live_error and not line.busy
+        cmd.busy.next = arc.busy or line.following or waiting
+        cmd.done.next = ((arc.done and not (own and line.following)) or last or (loaded and line.left == 0)
+                         or (alone and not line.following))
+        cmd.error.next = live_error and not line.following
+        cmd.iterate.next = arc.iterate
         cmd.quadrant.next = arc.quadrant
         cmd.stop_left.next = arc.stop_left
-        if line.busy or last:   # the line runs, or its last steps leave (0 left)
+        if alone:   # a helix's axes after its arc (their iterations left are not counted)
+            cmd.stop_left.next = 0
+            if blend:
+                cmd.stop_left.next = all_ones
+        elif line.busy or last:   # the line runs, or its last steps leave (0 left)
             cmd.stop_left.next = all_ones
             if not blend:
                 cmd.stop_left.next = concat(intbv(0)[pad:], line.left)
 
-    return magnitudes, hand_on, queue, status
+    return magnitudes, hand_on, loading, queue, status
 
 
 @block

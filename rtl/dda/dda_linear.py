@@ -1,5 +1,5 @@
 """The N-axis line: per-axis accumulators against the threshold T = max |d_i|, one iteration a clock."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, concat, intbv
 
 from models.dda_build import COORD_WIDTH
 from models.parameters import AXES
@@ -13,15 +13,18 @@ def dda_linear(clock, reset, line, steps):
     T = max_i |d_i|, every accumulator loaded with T // 2, integrand |d_i|;
     axis i steps in an iteration when acc_i + |d_i| >= T and it has steps
     left (then acc_i -= T).  The major axis steps every iteration, every axis
-    ends on its end point on iteration T.
+    ends on its end point on iteration T.  A helix's other axes follow the
+    same rule with the threshold T = K (``line.helix``: the ARC's
+    ITERATIONS, 32 bits), iterated by the driver in the arc's iterations.
 
-    Ports: ``line`` (``LinearPort``: ``load`` takes the magnitudes and
-    signs, ``advance`` runs one iteration while ``busy``; ``left`` is T less
-    the iterations done); ``steps`` (``AxisPulses`` of as many axes: the
-    steps of an iteration high for the clock after its edge, with their
-    directions).  ``load`` wins over an iteration in the same clock.  The
-    threshold is the largest magnitude, found by a chain of comparisons at
-    ``load`` (``_larger``); each axis is an ``_axis_line`` (``axis_x``, ...).
+    Ports: ``line`` (``LinearPort``: ``load`` takes the magnitudes, signs
+    and ``helix``, ``advance`` runs one iteration while ``following``;
+    ``left`` is a line's T less the iterations done, 0 for a helix);
+    ``steps`` (``AxisPulses`` of as many axes: the steps of an iteration
+    high for the clock after its edge, with their directions).  ``load``
+    wins over an iteration in the same clock.  A line's threshold is the
+    largest magnitude, found by a chain of comparisons at ``load``
+    (``_larger``); each axis is an ``_axis_line`` (``axis_x``, ...).
 
     A line (3, -1, 2), advance high from the clock after the load:
         clock    _/~\\_/~\\_/~\\_/~\\_/~\\_
@@ -35,31 +38,43 @@ def dda_linear(clock, reset, line, steps):
     if steps.axes != axes:
         raise ValueError(f"dda_linear: line has {axes} axes, steps {steps.axes}")
     width = len(line.left)
+    # the accumulators' side is one bit wider than the threshold (a line's max |d| or a helix's K):
+    # a sum of two values below it
+    thr_width = max(width, len(line.iterations)) + 1
     magnitudes = [line.magnitude(axis) for axis in range(axes)]
     # larger[i]: the largest of magnitudes 0..i
     larger = [magnitudes[0]] + [Signal(intbv(0)[width:]) for _ in range(1, axes)]
-    # the accumulators' side is one bit wider: a sum of two values below 2**(width - 1)
-    threshold, half = Signal(intbv(0)[width + 1:]), Signal(intbv(0)[width + 1:])
+    threshold, half = Signal(intbv(0)[thr_width:]), Signal(intbv(0)[thr_width:])
     iterate = Signal(bool(0))
+    moving = [Signal(bool(0)) for _ in range(axes)]
+    moving_any = ConcatSignal(*reversed(moving))   # bit i: axis i has steps left
     chain = [_larger(larger[axis - 1], magnitudes[axis], larger[axis]) for axis in range(1, axes)]
     largest = larger[-1]
     lines = [named(f"axis_{suffix}", _axis_line(clock, reset, line.load, iterate, magnitudes[axis],
                                                  line.positive(axis), half, threshold, steps.step(axis),
-                                                 steps.dir(axis)))
+                                                 steps.dir(axis), moving[axis]))
              for axis, suffix in enumerate(axis_suffixes(axes))]
 
     @always_comb
     def iterating():
+        line.following.next = moving_any != 0
         line.busy.next = line.left != 0
-        iterate.next = line.advance and line.left != 0
-        half.next = concat(False, False, largest[width:1])
+        iterate.next = line.advance and moving_any != 0
+        if line.helix:
+            half.next = concat(intbv(0)[thr_width + 1 - len(line.iterations):], line.iterations[len(line.iterations):1])
+        else:
+            half.next = concat(intbv(0)[thr_width + 1 - width:], largest[width:1])
 
     @always_seq(clock.posedge, reset=reset)
     def count_iterations():
         if line.load:
-            threshold.next = concat(False, largest)
-            line.left.next = largest
-        elif iterate:
+            if line.helix:
+                threshold.next = concat(intbv(0)[thr_width - len(line.iterations):], line.iterations)
+                line.left.next = 0
+            else:
+                threshold.next = concat(intbv(0)[thr_width - width:], largest)
+                line.left.next = largest
+        elif iterate and line.left != 0:
             line.left.next = line.left - 1
 
     return chain, lines, iterating, count_iterations
@@ -79,15 +94,16 @@ def _larger(first, second, larger):
 
 
 @block
-def _axis_line(clock, reset, load, iterate, magnitude, positive, half, threshold, step, direction):
+def _axis_line(clock, reset, load, iterate, magnitude, positive, half, threshold, step, direction, moving):
     """One axis of ``dda_linear``: at ``load`` its accumulator takes
     ``half`` (T // 2), its steps left and integrand ``magnitude`` and its
     ``direction`` ``positive``; at each ``iterate`` it steps (``step`` high
-    the next clock) when the sum reaches ``threshold`` and steps are left."""
+    the next clock) when the sum reaches ``threshold`` and steps are left.
+    ``moving``: steps are left."""
     width = len(magnitude)
     steps_left = Signal(intbv(0)[width:])
-    # the accumulator stays below T <= 2**(width - 1) (docs/axes.md); as wide as the sum, like the integrand
-    acc, integrand, total = (Signal(intbv(0)[width + 1:]) for _ in range(3))
+    # the accumulator stays below T (docs/axes.md); as wide as the sum, like the integrand
+    acc, integrand, total = (Signal(intbv(0)[len(threshold):]) for _ in range(3))
     stepping = Signal(bool(0))
 
     @always_comb
@@ -97,13 +113,14 @@ def _axis_line(clock, reset, load, iterate, magnitude, positive, half, threshold
     @always_comb
     def decide():
         stepping.next = total >= threshold and steps_left != 0
+        moving.next = steps_left != 0
 
     @always_seq(clock.posedge, reset=reset)
     def accumulate():
         step.next = 0
         if load:
             acc.next = half
-            integrand.next = concat(False, magnitude)
+            integrand.next = concat(intbv(0)[len(threshold) - width:], magnitude)
             steps_left.next = magnitude
             direction.next = positive
         elif iterate:

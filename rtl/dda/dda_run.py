@@ -46,7 +46,7 @@ def dda_run(clock, reset, cmd, move, steps):
     ``traditional_overflow``, ``look_ahead``, ``magnitudes`` (|x|, |y| a
     step on), ``goals`` and ``end_tests`` (the targets and the tests
     against them), ``decide`` (the decision), ``handover`` (``move.take``,
-    ``taking``), ``decision`` (the registered decision and the outputs);
+    ``taking``, ``cmd.iterate``), ``decision`` (the registered decision and the outputs);
     second clock, ``running_move`` (the move's registers and its piece) and
     ``datapath`` (accumulators, magnitudes, the move's values); ``errors``
     (``error``), ``status`` (``quadrant``, ``busy``).
@@ -263,6 +263,7 @@ def dda_run(clock, reset, cmd, move, steps):
     def handover():
         move.take.next = move.offer and (not active or (step.pending and step.finished))
         taking.next = active and cmd.advance and not step.pending
+        cmd.iterate.next = active and cmd.advance and not step.pending
 
     @always_seq(clock.posedge, reset=reset)
     def decision():

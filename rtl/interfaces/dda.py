@@ -6,6 +6,8 @@ from models.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulato
 from models.parameters import AXES
 from rtl.interfaces.bundle import axis_suffixes
 
+ITERATIONS_BITS = 32   # ARC's ITERATIONS operand (models/instructions.py): an unsigned word
+
 
 class DdaPort:
     """Command and status of the DDA interpolator (``rtl/dda_arc.py``).
@@ -26,7 +28,9 @@ class DdaPort:
     first iteration.  The setup of a move overlaps the run of the move before
     it, so chained moves leave no gap.
     Outputs: ``ready`` (a ``start`` would be taken: the setup stage is free),
-    ``busy`` (a move is being set up or run), ``done`` (one-clock pulse when a
+    ``busy`` (a move is being set up or run), ``iterate`` (the run takes this
+    clock's ``advance`` as an iteration of its move: its steps leave in the
+    next clock; a helix's other axes iterate with it), ``done`` (one-clock pulse when a
     move has ended on its end point, with its last step), ``error`` (a move
     was rejected: end not within one step of the start radius, radius too
     large, a centre point, acc_bits + lambda_shift too wide, a variant the
@@ -60,6 +64,7 @@ class DdaPort:
         self.xe = Signal(intbv(0, min=low, max=high))
         self.ye = Signal(intbv(0, min=low, max=high))
         self.advance = Signal(bool(0))
+        self.iterate = Signal(bool(0))
         self.busy = Signal(bool(0))
         self.done = Signal(bool(0))
         self.error = Signal(bool(0))
@@ -286,18 +291,25 @@ class AxisPulses:
 
 class LinearPort:
     """The N-axis line's port (``rtl/dda/dda_linear.py``), for ``axes`` axes
-    of ``coord_width``-bit signed displacements.
+    of ``coord_width``-bit signed displacements; it also runs a helix's
+    other axes (the same accumulators: a line and an arc never run at once).
 
     The driver gives ``load`` (one clock) with each axis's
     ``magnitude_<axis>`` (|d|, as wide as the coordinates: |-2**(W-1)| fits)
-    and ``positive_<axis>`` (the sign: 1 for d >= 0), and ``advance`` (one
-    iteration in each clock it is high, the feed rate's tick); the unit
-    drives ``busy`` (iterations left) and ``left`` (how many: the threshold
-    T = max |d| less those done, exactly the iterations the line has left)."""
+    and ``positive_<axis>`` (the sign: 1 for d >= 0), ``helix`` (1: the
+    threshold is ``iterations``, an ARC's ITERATIONS K, 32 bits; 0: a line,
+    threshold max |d|), and ``advance`` (one iteration in each clock it is
+    high while an axis has steps left: the feed rate's tick for a line, the
+    arc's iterations for a helix); the unit drives ``following`` (an axis
+    has steps left), ``busy`` (a line's iterations left) and ``left`` (how
+    many: the threshold T = max |d| less those done, exactly the iterations
+    the line has left; 0 for a helix)."""
 
     def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
         self.axes = axes
         self.load, self.advance, self.busy = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+        self.helix, self.following = Signal(bool(0)), Signal(bool(0))
+        self.iterations = Signal(intbv(0)[ITERATIONS_BITS:])
         for suffix in axis_suffixes(axes):
             setattr(self, f"magnitude_{suffix}", Signal(intbv(0)[coord_width:]))
             setattr(self, f"positive_{suffix}", Signal(bool(0)))
@@ -322,15 +334,18 @@ class AxesCommand:
     beside ``DdaPort``, read in the clock of ``DdaPort.start`` like the rest:
     on a card of more than two axes, the plane ``u``, ``v`` (axis indices:
     an arc's (x, y) outputs step axes u and v; a card of two axes turns arcs
-    in X, Y only) and each axis's signed displacement of a LINE
-    (``delta_<axis>``, ``coord_width`` bits: the line runs through
-    ``dda_linear``; on two axes a line is ``DdaPort``'s (``xe``, ``ye``))."""
+    in X, Y only), each axis's signed displacement (``delta_<axis>``,
+    ``coord_width`` bits) of a LINE (the line runs through ``dda_linear``;
+    on two axes a line is ``DdaPort``'s (``xe``, ``ye``)) or of an ARC's
+    helix (0 on the axes it does not move), and an ARC's ``iterations``
+    (ITERATIONS K; 0: no helix)."""
 
     def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
         self.axes = axes
         if axes > 2:
             bits = axis_index_bits(axes)
             self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
+            self.iterations = Signal(intbv(0)[ITERATIONS_BITS:])
             low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
             for suffix in axis_suffixes(axes):
                 setattr(self, f"delta_{suffix}", Signal(intbv(0, min=low, max=high)))

@@ -1,8 +1,9 @@
 """A command's header word read as the sequencer needs it: framing, checks and the plane."""
-from myhdl import Signal, always_comb, block, intbv
+from myhdl import ConcatSignal, Signal, always_comb, block, concat, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK, axes_of
+from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT
 
 
 def _opcode_rom(value_of):
@@ -43,11 +44,16 @@ def command_header(word, header):
 
     RANGE (``out_of_range``, docs/axes.md): a LINE axis the card
     (``header.axes``) lacks; an ARC plane axis it lacks, or U_AXIS = V_AXIS
-    other than 0/0, or on a card of two axes a plane other than X, Y; a HELIX (not built yet: every HELIX axis is refused) and
-    a PULSE with AXES other than 0 or X and Y (not built yet).  The plane
-    ``u``, ``v``: U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: a
-    LINE's axes (0: X and Y), all ones otherwise: the sequencer puts each
-    operand into the lowest slot left.
+    other than 0/0, or on a card of two axes a plane other than X, Y; a HELIX
+    axis the card lacks or that is u or v (on a card of two axes every HELIX
+    axis); a PULSE axis the card lacks (on a card of two axes a PULSE with
+    AXES other than 0 or X and Y).  The rules on a helix's operands are the
+    sequencer's (``rtl/regs/axis_operands.py``).  The plane ``u``, ``v``:
+    U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: the operand
+    registers its operands go to (the sequencer puts each into the lowest
+    slot left): on a card of two axes a LINE's axes (0: X and Y), all ones
+    otherwise; on more axes XS .. YE in slots 0..3, ITERATIONS in 4 and an
+    axis i's displacement or count in 5 + i (``axis_operands``).
 
         word      ==X=ARC hdr=X=XS=X=YS=X ...
         operands  ==X====4====X==?=X ...       valid while word is a header
@@ -78,6 +84,12 @@ def command_header(word, header):
     ones_in = tuple(bin(mask).count("1") for mask in range(1 << mask_width))
     beyond = ((1 << mask_width) - 1) & ~((1 << axes) - 1)   # the mask bits of axes the card lacks
     xy_only = axes == 2   # a card of two axes turns arcs in X, Y only (models.dda_axes.check_move)
+    # a card of more axes: XS .. YE, ITERATIONS, then one slot per axis (rtl/regs/axis_operands.py)
+    arc_slots = (1 << ITERATIONS_SLOT) - 1
+    xy_slots = XY_MASK << AXIS_SLOT
+    helix_slots = (1 << (ITERATIONS_SLOT + 1)) - 1   # XS .. YE and ITERATIONS
+    plane_axes = Signal(intbv(0)[axes:])
+    helix_on_plane = Signal(bool(0))
 
     fixed_count, zero_count, lead_count, ones = (Signal(intbv(0)[4:]) for _ in range(4))
     has_axes = Signal(bool(0))
@@ -98,30 +110,54 @@ def command_header(word, header):
                 header.operands.next = fixed_count + lead_count + ones
         header.reserved.next = (word[32:16] & ~allowed_high) != 0 or (word[16:] & ~allowed_low) != 0
 
-    @always_comb
-    def check_axes():
-        header.out_of_range.next = False
-        if word[32:isa.OPCODE_LSB] == line_op:
-            header.out_of_range.next = (word[mask_msb:mask_lsb] & beyond) != 0
-        elif word[32:isa.OPCODE_LSB] == pulse_op:
-            header.out_of_range.next = word[mask_msb:mask_lsb] != 0 and word[mask_msb:mask_lsb] != XY_MASK
-        elif word[32:isa.OPCODE_LSB] == arc_op:
-            header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
-                                        or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
-                                        or word[mask_msb:mask_lsb] != 0
-                                        or (xy_only and word[u_msb:u_lsb] != 0))
+    if xy_only:   # a card of two axes turns arcs in X, Y only: no plane to read, no helix
+        @always_comb
+        def check_axes():
+            header.out_of_range.next = False
+            if word[32:isa.OPCODE_LSB] == line_op:
+                header.out_of_range.next = (word[mask_msb:mask_lsb] & beyond) != 0
+            elif word[32:isa.OPCODE_LSB] == pulse_op:
+                header.out_of_range.next = word[mask_msb:mask_lsb] != 0 and word[mask_msb:mask_lsb] != XY_MASK
+            elif word[32:isa.OPCODE_LSB] == arc_op:
+                header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
+                                            or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
+                                            or word[mask_msb:mask_lsb] != 0
+                                            or (xy_only and word[u_msb:u_lsb] != 0))
 
-    @always_comb
-    def slots():
-        header.slots.next = all_slots
-        if word[32:isa.OPCODE_LSB] == line_op:
-            if word[mask_msb:mask_lsb] == 0:
-                header.slots.next = XY_MASK
-            else:
-                header.slots.next = word[mask_lsb + slot_count:mask_lsb]
+        @always_comb
+        def slots():
+            header.slots.next = all_slots
+            if word[32:isa.OPCODE_LSB] == line_op:
+                if word[mask_msb:mask_lsb] == 0:
+                    header.slots.next = XY_MASK
+                else:
+                    header.slots.next = word[mask_lsb + slot_count:mask_lsb]
 
-    planes = []
-    if axes > 2:   # a card of two axes turns arcs in X, Y only: no plane to read
+        checks = [check_axes, slots]
+    else:
+        @always_comb
+        def check_axes_n():
+            header.out_of_range.next = False
+            if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
+                header.out_of_range.next = (word[mask_msb:mask_lsb] & beyond) != 0
+            elif word[32:isa.OPCODE_LSB] == arc_op:
+                header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
+                                            or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
+                                            or (word[mask_msb:mask_lsb] & beyond) != 0 or helix_on_plane)
+
+        @always_comb
+        def slots_n():
+            header.slots.next = all_slots
+            if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
+                if word[mask_msb:mask_lsb] == 0:
+                    header.slots.next = xy_slots
+                else:
+                    header.slots.next = concat(word[mask_lsb + axes:mask_lsb], intbv(0)[AXIS_SLOT:])
+            elif word[32:isa.OPCODE_LSB] == arc_op:
+                header.slots.next = arc_slots
+                if word[mask_msb:mask_lsb] != 0:
+                    header.slots.next = concat(word[mask_lsb + axes:mask_lsb], intbv(helix_slots)[AXIS_SLOT:])
+
         @always_comb
         def plane():
             header.u.next = word[u_lsb + index_bits:u_lsb]
@@ -129,8 +165,17 @@ def command_header(word, header):
             if word[u_msb:u_lsb] == 0 and word[v_msb:v_lsb] == 0:
                 header.v.next = 1
 
-        planes.append(plane)
-    return lookups, frame, check_axes, slots, planes
+        @always_comb
+        def helix_plane():
+            # a HELIX axis that is the plane's u or v
+            helix_on_plane.next = (word[mask_lsb + axes:mask_lsb] & plane_axes) != 0
+
+        # the plane's axes as a mask, by (V_AXIS, U_AXIS): X, Y for 0, 0
+        plane_rom = tuple(((1 << (index & 7)) | (1 << (index >> 3)) if index else XY_MASK) & ((1 << axes) - 1)
+                          for index in range(64))
+        checks = [check_axes_n, slots_n, plane, helix_plane,
+                  _lookup(ConcatSignal(word(v_msb, v_lsb), word(u_msb, u_lsb)), plane_rom, plane_axes)]
+    return lookups, frame, checks
 
 
 @block

@@ -5,6 +5,7 @@ from models import instructions as isa
 from models.parameters import AXES, COORD_WIDTH
 from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl,
                             SetPort, card_reset)
+from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT, axis_operands
 from rtl.regs.command_header import command_header
 from rtl.regs.operand_register import operand_register, signed_low
 
@@ -42,20 +43,23 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     Ports (``rtl/interfaces/``): ``fifo`` (``FifoRead``), ``control``
     (``SequencerControl``), ``dda`` (``DdaPort``), ``axes_cmd``
-    (``AxesCommand``: the plane, and a LINE's displacements on a card of
-    more than two axes), ``pulses`` (``PulseCommand``), ``set_port``
+    (``AxesCommand``: on a card of more than two axes the plane, a LINE's or
+    helix's displacements and an ARC's ITERATIONS), ``pulses`` (``PulseCommand``), ``set_port``
     (``SetPort``), ``mark`` (``MarkPort``).
     Fetch: the FIFO is read one word per clock (``fifo.pop``; the word
     arrives in ``fifo.dout`` the next clock) into the next-instruction
     register while the current command runs; ``command_header`` frames it
     by the N-axis form (docs/axes.md) and each operand goes to the lowest
-    operand register left of those the header names (a LINE's: its axes',
-    the others are cleared; otherwise in order), so a LINE's displacement of
-    axis i is in register i.  Execute: LINE/ARC drive
+    operand register left of those the header names (two axes: a LINE's
+    its axes', the others are cleared, otherwise in order, so a LINE's
+    displacement of axis i is in register i; more axes: ``axis_operands``'
+    slots, XS .. YE, ITERATIONS, then axis i's displacement or count in
+    register 5 + i).  Execute: LINE/ARC drive
     ``dda`` (a one-clock ``start`` with the operands and BLEND) as soon as
     the DDA is ``ready``, also while the move before still runs, so chained
-    segments leave no gap; PULSE loads both direct pulse generators
-    (``pulses.load``, ``pulses.count_*``) and waits while ``pulses.busy``;
+    segments leave no gap; PULSE loads the direct pulse generators of its
+    axes (``pulses.load``, ``pulses.count_*``, ``pulses.mask``; X and Y on a
+    card of two axes) and waits while ``pulses.busy``;
     DWELL counts clocks once the pulse outputs are quiet
     (``pulses.outputs_busy`` low: no step request pending and the last step
     has left the pins); SET gives a ``set_port.strobe`` with its index and
@@ -89,15 +93,23 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     # the instruction register keeps the bits something reads: the opcode, the
     # two-axis form's header fields, the plane, SET's and DWELL's 32-bit operand 0,
     # and of the other operands the coordinate and count bits (their checks read
-    # the arriving word); a card of N axes has max(4, N) operand registers (an
-    # ARC's four, a LINE's N: a HELIX's operands are checked, not kept: not built yet)
+    # the arriving word); a card of two axes has four operand registers (an ARC's
+    # four, a LINE's two), a card of N > 2 axes AXIS_SLOT + N: XS .. YE, an ARC's
+    # ITERATIONS, and one per axis for a LINE's or helix's displacement or a PULSE's count
     field_bits = max(lsb + width for op in isa.OPCODES for _, lsb, width, _ in op.header_fields)
     if field_bits > isa.OPCODE_LSB:
         raise ValueError("the header's fields overlap the opcode")
     header = Signal(intbv(0)[field_bits:])
-    slot_count = max(len(isa.BY_NAME["ARC"].fixed_operands), axes)
-    operands = ([Signal(intbv(0)[32:]), Signal(intbv(0)[max(coord_width, count_bits):])]
-                + [Signal(intbv(0)[coord_width:]) for _ in range(2, slot_count)])
+    wide = max(coord_width, count_bits)
+    if axes == 2:
+        slot_count = len(isa.BY_NAME["ARC"].fixed_operands)
+        operands = ([Signal(intbv(0)[32:]), Signal(intbv(0)[wide:])]
+                    + [Signal(intbv(0)[coord_width:]) for _ in range(2, slot_count)])
+    else:
+        slot_count = AXIS_SLOT + axes
+        operands = ([Signal(intbv(0)[32:]), Signal(intbv(0)[wide:])]
+                    + [Signal(intbv(0)[coord_width:]) for _ in range(2, ITERATIONS_SLOT)]
+                    + [Signal(intbv(0)[32:])] + [Signal(intbv(0)[wide:]) for _ in range(axes)])
     operand_0, operand_1, operand_2, operand_3 = operands[:4]
     arriving = CommandHeader(axes, slot_count, OPERANDS_MAX)
     slots_left, slot_taken = Signal(intbv(0)[slot_count:]), Signal(intbv(0)[slot_count:])
@@ -124,6 +136,10 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     # the checks, made as the words arrive and kept beside them (no deep logic before the issue)
     bad_opcode, bad_header_bits, bad_set_index, bad_operand, bad_variant, bad_axes = (
         Signal(bool(0)) for _ in range(6))
+    # the axis fields' RANGE rules: the header's, and on more than two axes a helix's operands'
+    bad_helix = Signal(bool(0))
+    bad_fields = bad_axes if axes == 2 else Signal(bool(0))
+
     arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
     kept = (1 << slot_count) - 1
     coord_operands = _opcode_rom(lambda op: _operand_mask(op, "coord") & kept)
@@ -145,9 +161,15 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     index_lsb, index_msb = _field("SET", "INDEX")
     tag_lsb, tag_msb = _field("MARK", "TAG")
     reading = command_header(fifo.dout, arriving)
-    # an operand goes to the lowest register left (a LINE header clears those of its card's axes)
-    registers = [operand_register(clock, fifo.dout, slot_taken(index), line_in if index < axes else None,
-                                   register) for index, register in enumerate(operands)]
+    # an operand goes to the lowest register left; a LINE header clears those of its card's axes (two
+    # axes), an ARC header the ITERATIONS register and a move's or PULSE's header the axes' (more axes)
+    clear_iterations, clear_axes = Signal(bool(0)), Signal(bool(0))
+    if axes == 2:
+        clears = [line_in if index < axes else None for index in range(slot_count)]
+    else:
+        clears = [None] * ITERATIONS_SLOT + [clear_iterations] + [clear_axes] * axes
+    registers = [operand_register(clock, fifo.dout, slot_taken(index), clear, register)
+                 for index, (clear, register) in enumerate(zip(clears, operands))]
 
     @always_comb
     def lookup_coords():
@@ -178,9 +200,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     @always_comb
     def operand_routing():
-        # the lowest register left takes an arriving operand word; a LINE header clears its axes' registers
-        line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
-                        and not control.clear and not discard)
+        # the lowest register left takes an arriving operand word
         taken = intbv(0)[slot_count:]
         if word_due and fetched != 0 and not control.clear and not discard:
             for index in downrange(slot_count):
@@ -240,7 +260,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
             result[:] = E_BAD_OPCODE
         elif bad_header_bits:
             result[:] = E_RESERVED_BITS
-        elif bad_set_index or bad_operand or bad_variant or bad_axes:
+        elif bad_set_index or bad_operand or bad_variant or bad_fields:
             result[:] = E_RANGE
         next_error.next = result
 
@@ -347,8 +367,6 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
             dda.ys.next = operand_1[coord_width:].signed()
             dda.xe.next = operand_2[coord_width:].signed()
             dda.ye.next = operand_3[coord_width:].signed()
-        pulses.count_x.next = operand_0[count_bits:].signed()
-        pulses.count_y.next = operand_1[count_bits:].signed()
         set_port.index.next = header[index_msb:index_lsb]
         set_port.value.next = operand_0
         mark.tag.next = header[tag_msb:tag_lsb]
@@ -360,24 +378,37 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         control.motion_run.next = state == seq_t.S_MOTION
 
     fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
-    # a card of more than two axes: the plane (taken with the header), a LINE's displacement of axis i
-    # is operand register i; on two axes the arcs turn in X, Y only
-    header_in = Signal(bool(0))
-    deltas = [signed_low(operands[axis], axes_cmd.delta(axis)) for axis in range(axes)] if axes > 2 else []
-    planes = []
-    if axes > 2:
+    if axes == 2:
+        # a LINE header clears its axes' registers; the PULSE command's two-axis form; arcs in X, Y only
         @always_comb
-        def header_arriving():
+        def line_header():
+            line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
+                            and not control.clear and not discard)
+
+        @always_comb
+        def pulse_counts():
+            pulses.count_x.next = operand_0[count_bits:].signed()
+            pulses.count_y.next = operand_1[count_bits:].signed()
+
+        axis_units = [line_header, pulse_counts]
+    else:
+        # the plane and a PULSE's mask, taken with the header; a LINE's or helix's displacement of axis i
+        # and a PULSE's count of axis i in operand register AXIS_SLOT + i; a helix's RANGE rules
+        header_in, operand_in = Signal(bool(0)), Signal(bool(0))
+
+        @always_comb
+        def arriving_words():
             header_in.next = word_due and fetched == 0 and not control.clear and not discard
+            operand_in.next = word_due and fetched != 0 and not control.clear and not discard
 
-        @always_seq(clock.posedge, reset=reset)
-        def plane():
-            if header_in:
-                axes_cmd.u.next = arriving.u
-                axes_cmd.v.next = arriving.v
+        @always_comb
+        def field_checks():
+            bad_fields.next = bad_axes or bad_helix
 
-        planes = [header_arriving, plane]
-    return (fits, reading, registers, deltas, planes, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
+        axis_units = [arriving_words, field_checks, axis_operands(clock, reset, fifo.dout, arriving, header_in, operand_in, fetched,
+                                                    operands, axes_cmd, pulses, clear_iterations, clear_axes,
+                                                    bad_helix)]
+    return (fits, reading, registers, axis_units, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
             operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
             dwell_count, present, report)
 
@@ -398,5 +429,5 @@ def _fits(operand, fits, width):
 def sequencer_ports(coord_width=COORD_WIDTH.default, axes=AXES.default):
     """Fresh ports of ``sequencer`` for conversion and benches (a card of ``axes`` axes)."""
     return dict(clock=Signal(bool(0)), reset=card_reset(), fifo=FifoRead(), control=SequencerControl(),
-                dda=DdaPort(coord_width), axes_cmd=AxesCommand(axes, coord_width), pulses=PulseCommand(),
+                dda=DdaPort(coord_width), axes_cmd=AxesCommand(axes, coord_width), pulses=PulseCommand(axes),
                 set_port=SetPort(), mark=MarkPort())

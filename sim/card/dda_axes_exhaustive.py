@@ -1,4 +1,4 @@
-"""Every 3-D line of a narrow N-axis interpolator against the golden model, on Verilator.
+"""Every 3-D line, and helical arcs, of a narrow N-axis interpolator against the golden model, on Verilator.
 
 The card's interpolator (``rtl/dda/dda_axes.py``) of three axes at the
 narrowest coordinate width (``NARROW_WIDTH`` = 6 bits: -32..31 on each
@@ -17,17 +17,30 @@ The offset from the ``start`` edge to the first iteration is measured on
 one line and must hold for every line.  Every line of the 6-bit build is
 64**3 = 262,144 lines (the slow set); ``sample_lines`` draws a seeded
 sample for the default suite.
+
+Helices (``check_helix``): an arc of the precise mode in a plane of two
+axes, the third moving with it (ITERATIONS the arc's K,
+``models.dda_axes.with_iterations``); the arc iterates every other clock
+(its run takes two clocks an iteration), so iteration i is on clock
+offset + 2i, the offset measured on a helix-free arc.  ``every_helix``:
+every arc of the 6-bit build in X, Y (``sim.card.dda_exhaustive.every_arc``,
+both directions) rising on Z by K (counter-clockwise) or falling by K - 1
+(clockwise), the steepest helices the coordinates allow (up to 31, -32
+steps; the slow set); ``sample_helices``: seeded
+random arcs in every plane, random rises (the default suite).
 """
 import itertools
 import random
+from dataclasses import replace
 
-from models.dda_axes import MoveIterator
-from models.dda_build import DDA_MIN_WIDTH
-from models.dda_plan import AxesLineCommand
+from models.axes import PLANES
+from models.dda_axes import MoveIterator, arc_iterations
+from models.dda_build import DDA_MIN_WIDTH, PRECISE
+from models.dda_plan import ArcCommand, AxesLineCommand, plan_arc
 from rtl.convert import build_dir, convert_block
 from sim.backends.verilator.build import build_model
 from sim.backends.verilator.model import VerilatedModel
-from sim.card.dda_exhaustive import Tally, _mismatch
+from sim.card.dda_exhaustive import Tally, _mismatch, every_arc
 
 NARROW_WIDTH = DDA_MIN_WIDTH
 AXES = 3
@@ -96,12 +109,26 @@ class NarrowAxes:
         self.model.tick(2)
         self.model.take_edges()
 
+    def put(self, command):
+        """Put ``command`` (a line, or an arc with its plane and helix) on the ports."""
+        model, ones = self.model, (1 << self.width) - 1
+        line = isinstance(command, AxesLineCommand)
+        model["cmd_line"] = int(line)
+        deltas = command.deltas if line else tuple(command.helix) + (0,) * AXES
+        for axis, delta in zip("xyz", deltas):
+            model[f"axes_cmd_delta_{axis}"] = delta & ones
+        if not line:
+            for name in ("xs", "ys", "xe", "ye"):
+                model[f"cmd_{name}"] = getattr(command, name) & ones
+            model["cmd_ccw"], model["cmd_variant"] = int(command.ccw), command.variant
+            model["axes_cmd_u"], model["axes_cmd_v"] = command.plane
+            model["axes_cmd_iterations"] = command.iterations or 0
+
     def run(self, command, clocks):
         """Start ``command`` and run ``clocks`` clocks after the ``start`` edge;
         ([(clock after that edge, pin state)] of every clock with a step, busy, ready, dones)."""
         model = self.model
-        for axis, delta in zip("xyz", command.deltas):
-            model[f"axes_cmd_delta_{axis}"] = delta & ((1 << self.width) - 1)
+        self.put(command)
         model["cmd_start"] = 1
         model.tick()
         model["cmd_start"] = 0
@@ -116,25 +143,27 @@ class NarrowAxes:
                  for clock in range(int(start), end)]
         return steps, bool(model["cmd_busy"]), bool(model["cmd_ready"]), dones
 
-    def offset(self):
-        """Clocks from the ``start`` edge to the edge of iteration 0 (measured on a line of one step)."""
-        steps, _, ready, _ = self.run(AxesLineCommand((1, 1, 1)), 12)
+    def offset(self, command=AxesLineCommand((1, 1, 1))):
+        """Clocks from the ``start`` edge to the edge of iteration 0, measured on ``command``
+        (a line of one step, or an arc that steps in its first iteration)."""
+        steps, _, ready, _ = self.run(command, 4 * self.width + 40)
         if not (steps and ready):
-            raise ValueError("a line of one step does not step or does not end: no offset from it")
+            raise ValueError(f"{command} does not step or does not end: no offset from it")
         return steps[0][0]
 
     def close(self):
         self.model.close()
 
 
-def check_line(dda, command, tally, offset, keep=20):
-    """Run one line on ``dda`` and compare it with the model; mismatches go to ``tally``."""
+def check_line(dda, command, tally, offset, keep=20, pace=1):
+    """Run one line (or, ``pace`` 2, a helix) on ``dda`` and compare it with the model;
+    mismatches go to ``tally``."""
     expected, iterations = expected_steps(command, dda.width)
-    steps, busy, ready, dones = dda.run(command, offset + iterations + END_CLOCKS)
+    steps, busy, ready, dones = dda.run(command, offset + pace * iterations + END_CLOCKS)
     tally.moves += 1
     tally.iterations += iterations
     tally.steps += len(expected)
-    want = [(offset + index, state) for index, state in expected]
+    want = [(offset + pace * index, state) for index, state in expected]
     got = [(clock, _masked(state)) for clock, state in steps]
     if got != want or busy or not ready or dones != 1:
         first = next((i for i, (a, b) in enumerate(zip(got, want)) if a != b), min(len(got), len(want)))
@@ -149,6 +178,53 @@ def run_lines(dda, lines):
     tally.offsets["line"] = offset = dda.offset()
     for command in lines:
         check_line(dda, command, tally, offset)
+    return tally
+
+
+def helix_of(arc, rise, coord_width=NARROW_WIDTH):
+    """``arc`` (in a plane of two of the three axes) with ITERATIONS its K and the third axis
+    rising by ``rise(K)``, within the coordinates' range."""
+    iterations = arc_iterations(arc, coord_width)
+    other = next(axis for axis in range(AXES) if axis not in arc.plane)
+    low, high = -(1 << (coord_width - 1)), (1 << (coord_width - 1)) - 1
+    helix = tuple(max(low, min(high, rise(iterations))) if axis == other else 0 for axis in range(AXES))
+    return replace(arc, helix=helix, iterations=iterations)
+
+
+def every_helix(coord_width=NARROW_WIDTH):
+    """Every arc of the build in X, Y (the precise mode, both directions) with Z rising by K
+    counter-clockwise and falling by K - 1 clockwise."""
+    for command, accepted in every_arc(coord_width):
+        if accepted:
+            yield helix_of(command, (lambda k: k) if command.ccw else (lambda k: 1 - k), coord_width)
+
+
+def sample_helices(count, seed, coord_width=NARROW_WIDTH):
+    """``count`` seeded random helices: arcs of the precise mode in the planes G17, G18, G19 and
+    their reverses, the third axis rising by any amount up to K either way."""
+    rng = random.Random(seed)
+    high = (1 << (coord_width - 1)) - 1
+    planes = [PLANES[17], PLANES[18], PLANES[19]]
+    helices = []
+    while len(helices) < count:
+        xs, ys = rng.randint(-high, high), rng.randint(-high, high)
+        xe, ye = rng.randint(-high, high), rng.randint(-high, high)
+        plane = rng.choice(planes)
+        arc = ArcCommand(xs, ys, xe, ye, rng.random() < 0.5, PRECISE, plane=plane if rng.random() < 0.5 else plane[::-1])
+        try:
+            plan_arc(arc, coord_width)
+        except ValueError:
+            continue
+        helices.append(helix_of(arc, lambda k: rng.randint(-k, k), coord_width))
+    return helices
+
+
+def run_helices(dda, helices):
+    """Check every helix of ``helices`` on ``dda``; the ``Tally``."""
+    tally = Tally()
+    tally.offsets["arc"] = offset = dda.offset(ArcCommand(2, 0, 0, 2, variant=PRECISE))
+    for command in helices:
+        check_line(dda, command, tally, offset, pace=2)
     return tally
 
 

@@ -5,13 +5,15 @@ scenario also on MyHDL and on the generated top level in Icarus.
 
 Golden values: the STEP/DIR pins of every axis give the points of
 ``models.dda_axes.iterate_axes`` chained over the commands (3-D lines, arcs
-in the ZX (G18) and YZ (G19) planes and others); the short scenario's pin
-edges are identical, clock for clock, on the three back ends.
+in the ZX (G18) and YZ (G19) planes and others, helices in G17 rising on
+Z and in G18 on Y); the short scenario's pin edges are identical, clock for
+clock, on the three back ends.
 """
 import pytest
 
 from models import registers as regmap
 from models.axes import PLANES
+from models.dda_axes import with_iterations
 from models.dda_plan import ArcCommand, AxesLineCommand
 from sim.card.card_bench import axes_path
 from sim.card.card_e2e import motion_scenario, run_card
@@ -24,11 +26,18 @@ def line(*deltas, blend=False):
     return AxesLineCommand(tuple(deltas), blend=blend)
 
 
-SHORT = [line(6, -4, 9, blend=True), ArcCommand(10, 0, 0, 10, plane=G18), line(0, 3, -5),
-         ArcCommand(0, 8, -8, 0, ccw=False, plane=G19)]
+def helix(*arc, **fields):
+    """A helical arc with its ITERATIONS (the arc's K)."""
+    return with_iterations(ArcCommand(*arc, **fields))
+
+
+SHORT = [line(6, -4, 9, blend=True), helix(10, 0, 0, 10, plane=G18, helix=(0, 7, 0)), line(0, 3, -5),
+         ArcCommand(0, 8, -8, 0, ccw=False, plane=G19, blend=True), helix(8, 0, 0, -8, ccw=False, helix=(0, 0, -6))]
 MILL = [line(120, 0, -40, blend=True), ArcCommand(60, 0, 0, 60, plane=G18, blend=True), line(-30, 45, 25),
         ArcCommand(0, -50, 50, 0, ccw=False, plane=G19, blend=True), ArcCommand(40, 30, -30, 40, plane=G17),
-        line(0, 0, 77), ArcCommand(25, 0, 25, 0, plane=(2, 1)), line(-3, -200, 1)]
+        line(0, 0, 77), ArcCommand(25, 0, 25, 0, plane=(2, 1)), line(-3, -200, 1),
+        helix(30, 0, 30, 0, plane=G17, helix=(0, 0, -60), blend=True), helix(0, 20, 20, 0, ccw=False, plane=G18,
+                                                                           helix=(0, 25, 0))]
 FOUR = [line(30, -20, 10, 55, blend=True), ArcCommand(40, 0, 0, 40, plane=(3, 2), blend=True),
         line(0, 0, 0, -90), ArcCommand(30, 40, -40, 30, ccw=False, plane=(1, 3)), line(5, 5, 5, 5)]
 

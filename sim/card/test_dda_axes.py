@@ -1,7 +1,10 @@
 """The card's N-axis interpolator (``rtl/dda/dda_axes.py``) against the golden model.
 
 Chains of lines over N axes and arcs in planes of any two axes (G17, G18,
-G19 and the reversed pairs; X, Y on two axes), each started as soon as the interpolator is
+G19 and the reversed pairs; X, Y on two axes), on more than two axes
+helices among them (the other axes moving with the arc, ITERATIONS the
+arc's own K mostly, a wrong one now and then so that the helix ends before
+or after the arc), each started as soon as the interpolator is
 ready (the sequencer's way: set up while the move before runs), the feed's
 ``advance`` random but never in two clocks running.  Checked against
 ``models.dda_axes.MoveIterator`` run on the same commands, one after the
@@ -13,11 +16,12 @@ its last step.  The same bench runs on the MyHDL block and its Verilog in
 Icarus.
 """
 import random
+from dataclasses import replace
 
 import pytest
 from myhdl import block
 
-from models.dda_axes import MoveIterator
+from models.dda_axes import MoveIterator, arc_iterations
 from models.dda_build import IMPROVED, PRECISE
 from models.dda_plan import ArcCommand, AxesLineCommand
 from rtl.dda.dda_axes import dda_axes, dda_axes_ports
@@ -33,16 +37,31 @@ ARCS = [((40, 0), (0, 40)), ((30, 40), (-40, 30)), ((-30, -40), (40, -30)), ((25
 MAJOR = (50, 60)   # a line's longest displacement
 
 
-def random_moves(rng, axes, count):
-    """``count`` moves: lines of up to ``axes`` axes and arcs in random planes, random BLEND."""
+def random_helix(rng, arc, axes):
+    """``arc`` with a helix on some of the other axes (up to K steps each), ITERATIONS K the
+    arc's own (three times in four) or off by up to a third (the helix ends before or after the arc)."""
+    others = [axis for axis in range(axes) if axis not in arc.plane]
+    iterations = arc_iterations(arc, COORD_WIDTH)
+    if rng.random() < 0.25:
+        iterations = max(1, iterations + rng.randint(-iterations // 3, iterations // 3))
+    helix = [0] * axes
+    for axis in rng.sample(others, rng.randint(1, len(others))):
+        helix[axis] = rng.choice((-1, 1)) * rng.randint(1, iterations)
+    return replace(arc, helix=tuple(helix), iterations=iterations)
+
+
+def random_moves(rng, axes, count, helices=False):
+    """``count`` moves: lines of up to ``axes`` axes and arcs in random planes (with ``helices``
+    helical mostly), random BLEND."""
     moves = []
     for index in range(count):
         blend = rng.random() < 0.5
         if index % 2:
             (xs, ys), (xe, ye) = rng.choice(ARCS)
             plane = tuple(rng.sample(range(axes), 2)) if axes > 2 else (0, 1)   # two axes: X, Y only
-            moves.append(ArcCommand(xs, ys, xe, ye, ccw=rng.random() < 0.5, variant=rng.choice((IMPROVED, PRECISE)),
-                                    blend=blend, plane=plane))
+            arc = ArcCommand(xs, ys, xe, ye, ccw=rng.random() < 0.5, variant=rng.choice((IMPROVED, PRECISE)),
+                             blend=blend, plane=plane)
+            moves.append(random_helix(rng, arc, axes) if helices and rng.random() < 0.8 else arc)
         else:
             deltas = [0 if rng.random() < 0.25 else rng.randint(-MAJOR[1], MAJOR[1]) for _ in range(axes)]
             if axes == 2 or rng.random() < 0.2:
@@ -86,6 +105,19 @@ def drive(cmd, axes_cmd, move):
         cmd.lambda_shift.next, cmd.acc_bits.next = move.lambda_shift, move.acc_bits
         if axes_cmd.axes > 2:
             axes_cmd.u.next, axes_cmd.v.next = move.plane
+            helix = tuple(move.helix) + (0,) * axes_cmd.axes
+            for axis in range(axes_cmd.axes):
+                axes_cmd.delta(axis).next = helix[axis]
+            axes_cmd.iterations.next = move.iterations or 0
+
+
+def model_iterations(move, axes):
+    """The iterations of ``move`` in the golden model."""
+    model, count = MoveIterator(move, axes=axes, coord_width=COORD_WIDTH), 0
+    while not model.finished:
+        model.step()
+        count += 1
+    return count
 
 
 @block
@@ -95,12 +127,12 @@ def _bench(ports, cosim, step, cycles):
     return dut, clock_source(clock, 2 * HALF_PERIOD), reset_then_step(clock, reset, cycles, step)
 
 
-def run_chain(axes, seed, count, cosim):
+def run_chain(axes, seed, count, cosim, helices=False):
     """Run ``count`` random moves on a card of ``axes`` axes; (seen, advances, dones, moves)."""
     rng = random.Random(seed)
     ports = dda_axes_ports(axes, coord_width=COORD_WIDTH)
     cmd, axes_cmd, steps = ports["cmd"], ports["axes_cmd"], ports["steps"]
-    moves = random_moves(rng, axes, count)
+    moves = random_moves(rng, axes, count, helices)
     waiting = list(moves)
     seen, state = [], {"advanced": False, "started": False, "advances": [], "dones": 0}
     all_ones = (1 << len(cmd.stop_left)) - 1
@@ -123,8 +155,10 @@ def run_chain(axes, seed, count, cosim):
         cmd.advance.next = advance
         state["advanced"] = advance
 
-    cycles = 40 * 120 * count
-    run_traced(_bench(ports, cosim, step, cycles), f"dda_axes_{axes}_{seed}_{'icarus' if cosim else 'myhdl'}")
+    # the chain's iterations at the advance's mean rate (0.41 a clock) with room, and each move's set-up
+    cycles = int(sum(model_iterations(move, axes) for move in moves) / 0.35) + 150 * count + 400
+    name = f"dda_axes_{axes}_{seed}{'_helix' if helices else ''}_{'icarus' if cosim else 'myhdl'}"
+    run_traced(_bench(ports, cosim, step, cycles), name)
     assert not waiting, f"{len(waiting)} moves never started"
     return seen, state["advances"], state["dones"], moves, all_ones
 
@@ -135,7 +169,22 @@ def run_chain(axes, seed, count, cosim):
 @pytest.mark.parametrize("axes, seed", [(2, 1), (3, 2), pytest.param(4, 3, marks=pytest.mark.slow(
     reason="a fourth axis: the same routing and line unit as three, another 10 s a back end"))])
 def test_chained_lines_and_arcs_step_as_the_golden_model(axes, seed, cosim):
-    seen, advances, dones, moves, all_ones = run_chain(axes, seed, 8, cosim)
+    check_chain(axes, seed, cosim, helices=False)
+
+
+@pytest.mark.parametrize("cosim", [False, pytest.param(True, marks=pytest.mark.slow(
+    reason="the generated Verilog: the card's end-to-end helices run it on Icarus and Verilator by default"))],
+    ids=["myhdl", "icarus"])
+@pytest.mark.parametrize("axes, seed", [(3, 16), pytest.param(3, 14, marks=pytest.mark.slow(reason="more chains")),
+                                        pytest.param(4, 6, marks=pytest.mark.slow(reason="more chains")),
+                                        pytest.param(5, 7, marks=pytest.mark.slow(reason="more chains"))])
+def test_chained_helices_lines_and_arcs_step_as_the_golden_model(axes, seed, cosim):
+    check_chain(axes, seed, cosim, helices=True)
+
+
+def check_chain(axes, seed, cosim, helices):
+    """Every stepping iteration, the advances and the dones of a random chain as the golden model's."""
+    seen, advances, dones, moves, all_ones = run_chain(axes, seed, 8, cosim, helices)
     golden, iterations = expected(moves, axes)
     assert [(s, d) for s, d, _, _ in seen] == [(s, d) for s, d, _ in golden]
     # a line that does not blend: stop_left is its iterations left, exactly; a blending one all ones

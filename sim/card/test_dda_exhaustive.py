@@ -135,3 +135,18 @@ def test_every_3d_line_equals_the_model(axes_dda):
     tally = run_lines(axes_dda, every_line())
     assert tally.moves == 1 << (3 * NARROW_WIDTH)
     assert tally.mismatches == []
+
+
+def test_a_sample_of_helices_equals_the_model(axes_dda):
+    from sim.card.dda_axes_exhaustive import run_helices, sample_helices
+
+    tally = run_helices(axes_dda, sample_helices(400, seed=26))
+    assert tally.moves == 400 and tally.mismatches == []
+
+
+@pytest.mark.slow(reason="every arc of the 6-bit build with its steepest helix: 1.5 million moves on Verilator")
+def test_every_steepest_helix_equals_the_model(axes_dda):
+    from sim.card.dda_axes_exhaustive import every_helix, run_helices
+
+    tally = run_helices(axes_dda, every_helix())
+    assert tally.moves > 1_000_000 and tally.mismatches == []

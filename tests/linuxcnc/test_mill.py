@@ -2,11 +2,14 @@
 
 The card server runs a card built with three axes (``--axes 3``); the driver serves
 stepgen.00 .. 02 and sends each servo period's move as one LINE of X, Y and Z.  The
-program (``gcode/lcnc_mill.ngc``) has 3-D lines, a helical bore (G2 with Z, two
-turns) and arcs in the ZX (G18) and YZ (G19) planes: LinuxCNC's trajectory planner
-turns them into joint positions, so every axis's pins must follow the commanded joint
-positions as the X and Y pins do in test_linuxcnc.py: within one step at every servo
-period (the queue's delay taken into account), no underrun, exactly on the end point.
+program (``gcode/lcnc_mill.ngc``) has 3-D lines, helical bores (G2 with Z, two
+turns down; G3 with Z, one turn up) and arcs in the ZX (G18) and YZ (G19) planes:
+LinuxCNC's trajectory planner turns them into joint positions, so every axis's pins
+must follow the commanded joint positions as the X and Y pins do in test_linuxcnc.py:
+within one step at every servo period (the queue's delay taken into account), no
+underrun, exactly on the end point.  LinuxCNC runs a helix as joint moves through
+the driver (a LINE of X, Y and Z each servo period): this exercises the driver's
+path, not the card's HELIX command (``sim/card`` and ``tests/host`` run that).
 """
 import pytest
 
