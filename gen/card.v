@@ -422,7 +422,6 @@ reg [31:0] card_core0_regs_fifo1_reg_word47_chain_out_data;
 wire card_core0_regs_fifo1_reg_word47_chain_out_clamped;
 wire card_core0_regs_fifo1_reg_word47__limit23_below;
 wire card_core0_regs_fifo1_reg_word47__limit23_above;
-wire [16:0] card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole;
 reg [15:0] card_core0_regs_fifo1_reg_word48_shown;
 wire card_core0_regs_fifo1_reg_word48_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
@@ -504,8 +503,6 @@ wire card_core0_regs_fifo1_reg_word53__limit_either11_bus_above;
 wire card_core0_regs_fifo1_reg_word53__limit_either11_bus_below;
 wire card_core0_regs_fifo1_reg_word53__limit_either11_set_above;
 wire card_core0_regs_fifo1_reg_word53__limit_either11_set_below;
-wire [16:0] card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole;
-wire [16:0] card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole;
 reg [7:0] card_core0_regs_fifo1_reg_word54_honoured;
 reg card_core0_regs_fifo1_reg_word54_out_of_range;
 reg [7:0] card_core0_regs_fifo1_reg_word54_shown;
@@ -750,7 +747,6 @@ reg [31:0] card_core0_regs_fifo1_reg_word71_chain_out_data;
 wire card_core0_regs_fifo1_reg_word71_chain_out_clamped;
 wire card_core0_regs_fifo1_reg_word71__limit31_below;
 wire card_core0_regs_fifo1_reg_word71__limit31_above;
-wire [24:0] card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole;
 reg card_core0_regs_fifo1_reg_word71__store48_word_strobe;
 reg [23:0] card_core0_regs_fifo1_reg_word71__store48_word_value;
 wire [6:0] card_core0_regs_fifo1_reg_word72_honoured;
@@ -814,7 +810,6 @@ reg [31:0] card_core0_regs_fifo1_reg_word76_chain_out_data;
 wire card_core0_regs_fifo1_reg_word76_chain_out_clamped;
 wire card_core0_regs_fifo1_reg_word76__limit35_below;
 wire card_core0_regs_fifo1_reg_word76__limit35_above;
-wire [16:0] card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole;
 wire card_core0_regs_fifo1_reg_word77_zero_above;
 reg [22:0] card_core0_regs_fifo1_reg_word77_honoured;
 reg card_core0_regs_fifo1_reg_word77_out_of_range;
@@ -2924,12 +2919,8 @@ assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole = {(!card_core0_regs_fifo1_reg_word47_zero_above), card_core0_regs_fifo1_reg_word47_merged};
-
-
-
 assign card_core0_regs_fifo1_reg_word47__limit23_below = 1'b0;
-assign card_core0_regs_fifo1_reg_word47__limit23_above = (card_core0_regs_fifo1_reg_word47__limit23__bounds27_whole[17-1:16] != 0);
+assign card_core0_regs_fifo1_reg_word47__limit23_above = (!card_core0_regs_fifo1_reg_word47_zero_above);
 
 
 always @(card_core0_regs_fifo1_reg_word47__limit23_below, card_core0_regs_fifo1_reg_word47__limit23_above, card_core0_regs_fifo1_reg_word47_merged) begin: card_core0_regs_fifo1_reg_word47__limit23__clamp18_clamp
@@ -3300,21 +3291,13 @@ assign card_core0_regs_fifo1_reg_word53_bus_zero = ((card_core0_regs_fifo1_writt
 
 
 
-assign card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole = {(!card_core0_regs_fifo1_reg_word53_set_zero), card_core0_regs_fifo1_reg_word53_set_low};
-
-
-
 assign card_core0_regs_fifo1_reg_word53__limit_either11_set_below = 1'b0;
-assign card_core0_regs_fifo1_reg_word53__limit_either11_set_above = (card_core0_regs_fifo1_reg_word53__limit_either11__bounds32_whole[17-1:16] != 0);
-
-
-
-assign card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole = {(!card_core0_regs_fifo1_reg_word53_bus_zero), card_core0_regs_fifo1_reg_word53_merged};
+assign card_core0_regs_fifo1_reg_word53__limit_either11_set_above = (!card_core0_regs_fifo1_reg_word53_set_zero);
 
 
 
 assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_below = 1'b0;
-assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_above = (card_core0_regs_fifo1_reg_word53__limit_either11__bounds33_whole[17-1:16] != 0);
+assign card_core0_regs_fifo1_reg_word53__limit_either11_bus_above = (!card_core0_regs_fifo1_reg_word53_bus_zero);
 
 
 always @(card_core0_regs_fifo1_reg_word53__limit_either11_set_below, card_core0_regs_fifo1_reg_word53_set_selected, card_core0_regs_fifo1_reg_word53__limit_either11_bus_above, card_core0_regs_fifo1_reg_word53__limit_either11_set_above, card_core0_regs_fifo1_reg_word53__limit_either11_bus_below) begin: card_core0_regs_fifo1_reg_word53__limit_either11_choose
@@ -4478,12 +4461,8 @@ assign card_core0_regs_fifo1_reg_word71_merged = (card_core0_regs_fifo1_written_
 
 
 
-assign card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole = {(!card_core0_regs_fifo1_reg_word71_zero_above), card_core0_regs_fifo1_reg_word71_merged};
-
-
-
 assign card_core0_regs_fifo1_reg_word71__limit31_below = 1'b0;
-assign card_core0_regs_fifo1_reg_word71__limit31_above = (card_core0_regs_fifo1_reg_word71__limit31__bounds46_whole[25-1:24] != 0);
+assign card_core0_regs_fifo1_reg_word71__limit31_above = (!card_core0_regs_fifo1_reg_word71_zero_above);
 
 
 always @(card_core0_regs_fifo1_reg_word71__limit31_below, card_core0_regs_fifo1_reg_word71__limit31_above, card_core0_regs_fifo1_reg_word71_merged) begin: card_core0_regs_fifo1_reg_word71__limit31__clamp29_clamp
@@ -4771,12 +4750,8 @@ assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_wor
 
 
 
-assign card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole = {(!card_core0_regs_fifo1_reg_word76_zero_above), card_core0_regs_fifo1_reg_word76_merged};
-
-
-
 assign card_core0_regs_fifo1_reg_word76__limit35_below = 1'b0;
-assign card_core0_regs_fifo1_reg_word76__limit35_above = (card_core0_regs_fifo1_reg_word76__limit35__bounds49_whole[17-1:16] != 0);
+assign card_core0_regs_fifo1_reg_word76__limit35_above = (!card_core0_regs_fifo1_reg_word76_zero_above);
 
 
 always @(card_core0_regs_fifo1_reg_word76__limit35_below, card_core0_regs_fifo1_reg_word76__limit35_above, card_core0_regs_fifo1_reg_word76_merged) begin: card_core0_regs_fifo1_reg_word76__limit35__clamp32_clamp

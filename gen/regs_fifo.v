@@ -331,7 +331,6 @@ reg [31:0] reg_word6_chain_out_data;
 wire reg_word6_chain_out_clamped;
 wire reg_word6__limit4_below;
 wire reg_word6__limit4_above;
-wire [16:0] reg_word6__limit4__bounds0_whole;
 reg [15:0] reg_word7_shown;
 wire reg_word7_mine;
 wire [31:0] reg_word7_shown_wide;
@@ -413,8 +412,6 @@ wire reg_word12__limit_either2_bus_above;
 wire reg_word12__limit_either2_bus_below;
 wire reg_word12__limit_either2_set_above;
 wire reg_word12__limit_either2_set_below;
-wire [16:0] reg_word12__limit_either2__bounds5_whole;
-wire [16:0] reg_word12__limit_either2__bounds6_whole;
 reg [7:0] reg_word13_honoured;
 reg reg_word13_out_of_range;
 reg [7:0] reg_word13_shown;
@@ -659,7 +656,6 @@ reg [31:0] reg_word30_chain_out_data;
 wire reg_word30_chain_out_clamped;
 wire reg_word30__limit12_below;
 wire reg_word30__limit12_above;
-wire [24:0] reg_word30__limit12__bounds19_whole;
 reg reg_word30__store20_word_strobe;
 reg [23:0] reg_word30__store20_word_value;
 wire [6:0] reg_word31_honoured;
@@ -723,7 +719,6 @@ reg [31:0] reg_word35_chain_out_data;
 wire reg_word35_chain_out_clamped;
 wire reg_word35__limit16_below;
 wire reg_word35__limit16_above;
-wire [16:0] reg_word35__limit16__bounds22_whole;
 wire reg_word36_zero_above;
 reg [22:0] reg_word36_honoured;
 reg reg_word36_out_of_range;
@@ -1427,12 +1422,8 @@ assign reg_word6_merged = ((reg_word6_shown & (~written_mask[16-1:0])) | (writte
 
 
 
-assign reg_word6__limit4__bounds0_whole = {(!reg_word6_zero_above), reg_word6_merged};
-
-
-
 assign reg_word6__limit4_below = 1'b0;
-assign reg_word6__limit4_above = (reg_word6__limit4__bounds0_whole[17-1:16] != 0);
+assign reg_word6__limit4_above = (!reg_word6_zero_above);
 
 
 always @(reg_word6__limit4_below, reg_word6__limit4_above, reg_word6_merged) begin: reg_word6__limit4__clamp0_clamp
@@ -1803,21 +1794,13 @@ assign reg_word12_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) ==
 
 
 
-assign reg_word12__limit_either2__bounds5_whole = {(!reg_word12_set_zero), reg_word12_set_low};
-
-
-
 assign reg_word12__limit_either2_set_below = 1'b0;
-assign reg_word12__limit_either2_set_above = (reg_word12__limit_either2__bounds5_whole[17-1:16] != 0);
-
-
-
-assign reg_word12__limit_either2__bounds6_whole = {(!reg_word12_bus_zero), reg_word12_merged};
+assign reg_word12__limit_either2_set_above = (!reg_word12_set_zero);
 
 
 
 assign reg_word12__limit_either2_bus_below = 1'b0;
-assign reg_word12__limit_either2_bus_above = (reg_word12__limit_either2__bounds6_whole[17-1:16] != 0);
+assign reg_word12__limit_either2_bus_above = (!reg_word12_bus_zero);
 
 
 always @(reg_word12__limit_either2_set_below, reg_word12_set_selected, reg_word12__limit_either2_bus_above, reg_word12__limit_either2_set_above, reg_word12__limit_either2_bus_below) begin: reg_word12__limit_either2_choose
@@ -2981,12 +2964,8 @@ assign reg_word30_merged = (written_data[24-1:0] & written_mask[24-1:0]);
 
 
 
-assign reg_word30__limit12__bounds19_whole = {(!reg_word30_zero_above), reg_word30_merged};
-
-
-
 assign reg_word30__limit12_below = 1'b0;
-assign reg_word30__limit12_above = (reg_word30__limit12__bounds19_whole[25-1:24] != 0);
+assign reg_word30__limit12_above = (!reg_word30_zero_above);
 
 
 always @(reg_word30__limit12_below, reg_word30__limit12_above, reg_word30_merged) begin: reg_word30__limit12__clamp11_clamp
@@ -3274,12 +3253,8 @@ assign reg_word35_merged = ((reg_word35_shown & (~written_mask[16-1:0])) | (writ
 
 
 
-assign reg_word35__limit16__bounds22_whole = {(!reg_word35_zero_above), reg_word35_merged};
-
-
-
 assign reg_word35__limit16_below = 1'b0;
-assign reg_word35__limit16_above = (reg_word35__limit16__bounds22_whole[17-1:16] != 0);
+assign reg_word35__limit16_above = (!reg_word35_zero_above);
 
 
 always @(reg_word35__limit16_below, reg_word35__limit16_above, reg_word35_merged) begin: reg_word35__limit16__clamp14_clamp

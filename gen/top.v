@@ -445,7 +445,6 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word88_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word88_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_reg_word88__limit42_below;
 wire card1_card_core1_regs_fifo2_reg_word88__limit42_above;
-wire [16:0] card1_card_core1_regs_fifo2_reg_word88__limit42__bounds54_whole;
 reg [15:0] card1_card_core1_regs_fifo2_reg_word89_shown;
 wire card1_card_core1_regs_fifo2_reg_word89_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
@@ -527,8 +526,6 @@ wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above;
 wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below;
 wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above;
 wire card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below;
-wire [16:0] card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds59_whole;
-wire [16:0] card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds60_whole;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word95_honoured;
 reg card1_card_core1_regs_fifo2_reg_word95_out_of_range;
 reg [7:0] card1_card_core1_regs_fifo2_reg_word95_shown;
@@ -773,7 +770,6 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word112_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word112_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_reg_word112__limit50_below;
 wire card1_card_core1_regs_fifo2_reg_word112__limit50_above;
-wire [24:0] card1_card_core1_regs_fifo2_reg_word112__limit50__bounds73_whole;
 reg card1_card_core1_regs_fifo2_reg_word112__store76_word_strobe;
 reg [23:0] card1_card_core1_regs_fifo2_reg_word112__store76_word_value;
 wire [6:0] card1_card_core1_regs_fifo2_reg_word113_honoured;
@@ -837,7 +833,6 @@ reg [31:0] card1_card_core1_regs_fifo2_reg_word117_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word117_chain_out_clamped;
 wire card1_card_core1_regs_fifo2_reg_word117__limit54_below;
 wire card1_card_core1_regs_fifo2_reg_word117__limit54_above;
-wire [16:0] card1_card_core1_regs_fifo2_reg_word117__limit54__bounds76_whole;
 wire card1_card_core1_regs_fifo2_reg_word118_zero_above;
 reg [22:0] card1_card_core1_regs_fifo2_reg_word118_honoured;
 reg card1_card_core1_regs_fifo2_reg_word118_out_of_range;
@@ -3755,12 +3750,8 @@ assign card1_card_core1_regs_fifo2_reg_word88_merged = ((card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88__limit42__bounds54_whole = {(!card1_card_core1_regs_fifo2_reg_word88_zero_above), card1_card_core1_regs_fifo2_reg_word88_merged};
-
-
-
 assign card1_card_core1_regs_fifo2_reg_word88__limit42_below = 1'b0;
-assign card1_card_core1_regs_fifo2_reg_word88__limit42_above = (card1_card_core1_regs_fifo2_reg_word88__limit42__bounds54_whole[17-1:16] != 0);
+assign card1_card_core1_regs_fifo2_reg_word88__limit42_above = (!card1_card_core1_regs_fifo2_reg_word88_zero_above);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word88__limit42_below, card1_card_core1_regs_fifo2_reg_word88__limit42_above, card1_card_core1_regs_fifo2_reg_word88_merged) begin: card1_card_core1_regs_fifo2_reg_word88__limit42__clamp36_clamp
@@ -4131,21 +4122,13 @@ assign card1_card_core1_regs_fifo2_reg_word94_bus_zero = ((card1_card_core1_regs
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds59_whole = {(!card1_card_core1_regs_fifo2_reg_word94_set_zero), card1_card_core1_regs_fifo2_reg_word94_set_low};
-
-
-
 assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below = 1'b0;
-assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above = (card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds59_whole[17-1:16] != 0);
-
-
-
-assign card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds60_whole = {(!card1_card_core1_regs_fifo2_reg_word94_bus_zero), card1_card_core1_regs_fifo2_reg_word94_merged};
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above = (!card1_card_core1_regs_fifo2_reg_word94_set_zero);
 
 
 
 assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below = 1'b0;
-assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above = (card1_card_core1_regs_fifo2_reg_word94__limit_either20__bounds60_whole[17-1:16] != 0);
+assign card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above = (!card1_card_core1_regs_fifo2_reg_word94_bus_zero);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_below, card1_card_core1_regs_fifo2_reg_word94_set_selected, card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_above, card1_card_core1_regs_fifo2_reg_word94__limit_either20_set_above, card1_card_core1_regs_fifo2_reg_word94__limit_either20_bus_below) begin: card1_card_core1_regs_fifo2_reg_word94__limit_either20_choose
@@ -5309,12 +5292,8 @@ assign card1_card_core1_regs_fifo2_reg_word112_merged = (card1_card_core1_regs_f
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112__limit50__bounds73_whole = {(!card1_card_core1_regs_fifo2_reg_word112_zero_above), card1_card_core1_regs_fifo2_reg_word112_merged};
-
-
-
 assign card1_card_core1_regs_fifo2_reg_word112__limit50_below = 1'b0;
-assign card1_card_core1_regs_fifo2_reg_word112__limit50_above = (card1_card_core1_regs_fifo2_reg_word112__limit50__bounds73_whole[25-1:24] != 0);
+assign card1_card_core1_regs_fifo2_reg_word112__limit50_above = (!card1_card_core1_regs_fifo2_reg_word112_zero_above);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word112__limit50_below, card1_card_core1_regs_fifo2_reg_word112__limit50_above, card1_card_core1_regs_fifo2_reg_word112_merged) begin: card1_card_core1_regs_fifo2_reg_word112__limit50__clamp47_clamp
@@ -5602,12 +5581,8 @@ assign card1_card_core1_regs_fifo2_reg_word117_merged = ((card1_card_core1_regs_
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word117__limit54__bounds76_whole = {(!card1_card_core1_regs_fifo2_reg_word117_zero_above), card1_card_core1_regs_fifo2_reg_word117_merged};
-
-
-
 assign card1_card_core1_regs_fifo2_reg_word117__limit54_below = 1'b0;
-assign card1_card_core1_regs_fifo2_reg_word117__limit54_above = (card1_card_core1_regs_fifo2_reg_word117__limit54__bounds76_whole[17-1:16] != 0);
+assign card1_card_core1_regs_fifo2_reg_word117__limit54_above = (!card1_card_core1_regs_fifo2_reg_word117_zero_above);
 
 
 always @(card1_card_core1_regs_fifo2_reg_word117__limit54_below, card1_card_core1_regs_fifo2_reg_word117__limit54_above, card1_card_core1_regs_fifo2_reg_word117_merged) begin: card1_card_core1_regs_fifo2_reg_word117__limit54__clamp50_clamp

@@ -281,9 +281,16 @@ def _bounds(value, zero_above, below, above, spec):
 
     @always_comb
     def compare_above_power_of_two():
-        # low is 0 (nothing below it) and high is 2**high_top - 1
+        # low is 0 (nothing below it) and high is 2**high_top - 1: above it when a bit over
+        # high_top is set, in the word or above it (the low bits are not read: no widened word)
         below.next = False
-        above.next = whole[top:high_top] != 0
+        above.next = not zero_above or value[width:high_top] != 0
+
+    @always_comb
+    def compare_above_whole_width():
+        # low is 0 and high every bit of the width: above it only when a bit above the width is set
+        below.next = False
+        above.next = not zero_above
 
     @always_comb
     def compare_above():
@@ -292,8 +299,10 @@ def _bounds(value, zero_above, below, above, spec):
         above.next = whole[top:high_top] != 0 or whole[high_top:] > high
 
     power_of_two = high == (1 << high_top) - 1
+    if low == 0 and power_of_two:
+        return compare_above_whole_width if high_top >= width else compare_above_power_of_two
     if low == 0:
-        return widen, (compare_above_power_of_two if power_of_two else compare_above)
+        return widen, compare_above
     return widen, (compare_power_of_two if power_of_two else compare)
 
 
