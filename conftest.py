@@ -34,6 +34,15 @@ SLOW_CASES = {
     "tests/formal/test_formal.py::test_fast_group_proves[card_status]": "a proof of over 30 s",
     "tests/formal/test_formal.py::test_fast_group_proves[card_fifo_order]": "a proof of over 20 s",
     "tests/formal/test_formal.py::test_fast_group_proves[dda_lines]": "a proof of over 20 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[machine_homing]": "a proof of over 15 s (the homing's pin "
+                                                                           "rules, machine_homing_pins, stay)",
+    "tests/formal/test_formal.py::test_fast_group_proves[machine_watchdog]": "a proof of over 15 s "
+                                                                             "(machine_watchdog_write stays)",
+    "tests/formal/test_formal.py::test_fast_group_proves[machine_hold]": "a proof of about 15 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[machine_reaction]": "a proof of over 10 s",
+    "tests/formal/test_formal.py::test_fast_group_proves[regs_fifo_path]": "a proof of over 15 s",
+    "tests/formal/test_formal.py::test_fixed_mutant_is_rejected[regs_fifo-m002]": "another fixed mutant "
+                                                                                  "(pci_slave-m000 stays)",
     "tests/formal/test_formal.py::test_dda_defect_is_caught[x_steps_with_y]": "another defect for the same group",
     "tests/formal/test_formal.py::test_card_defect_is_caught[level_off_by_one]": "another defect for the same group",
     "tests/formal/test_formal.py::test_machine_defect_is_caught[clear_stop_during_estop]": "one machine defect per rule "
