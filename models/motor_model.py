@@ -33,6 +33,13 @@ from models.encoder_model import GRAY, SCALE_FRACTION_BITS, signed32
 MASK32 = 0xFFFFFFFF
 
 
+def xorshift32(state):
+    """The next state of the 32-bit xorshift generator (13, 17, 5) after ``state`` (not 0)."""
+    state ^= (state << 13) & MASK32
+    state ^= state >> 17
+    return state ^ ((state << 5) & MASK32)
+
+
 def round_ratio(steps, numerator, denominator):
     """round(steps * numerator / denominator), halves up: floor(x + 1/2)."""
     return (2 * steps * numerator + denominator) // (2 * denominator)
@@ -56,12 +63,8 @@ class MotorModel:
         self._state = (seed & MASK32) or 1
 
     def _draw(self):
-        x = self._state
-        x ^= (x << 13) & MASK32
-        x ^= x >> 17
-        x ^= (x << 5) & MASK32
-        self._state = x
-        return x % (self.jitter + 1)
+        self._state = xorshift32(self._state)
+        return self._state % (self.jitter + 1)
 
     def clock(self, step, direction, drive_enable=True):
         """One clock; returns the pins (A, B, index) for the next rising edge."""

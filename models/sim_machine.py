@@ -39,13 +39,12 @@ from dataclasses import asdict, dataclass, field
 from models import registers as regmap
 from models.axes import AXIS_NAMES
 from models.encoder_model import FILTER_RESET
-from models.motor_model import MotorModel
+from models.motor_model import MASK32, MotorModel, xorshift32
 
 INPUTS = regmap.input_names(2)      # the machine has X and Y: the two-axis card's inputs
 SWITCH_INPUTS = INPUTS[1:]          # every input but the E-stop can have a switch
 AXIS_OF = {name: AXIS_NAMES.index(name.rsplit("_", 1)[1]) for name in SWITCH_INPUTS}
 MOTOR_AXES = AXIS_NAMES[:2]        # the machine's axes that can have a motor
-MASK32 = 0xFFFFFFFF
 RATIO_MAX = 1 << 16     # a ratio's numerator and denominator
 LAG_MAX = 1 << 20       # clocks of lag (the compiled harness keeps that many positions)
 SPACING_MAX = 1 << 16   # clocks of spacing, and of jitter
@@ -203,12 +202,8 @@ class _Contact:
         self.chatter_left = self.run_left = 0
 
     def _run(self):
-        x = self.state
-        x ^= (x << 13) & MASK32
-        x ^= x >> 17
-        x ^= (x << 5) & MASK32
-        self.state = x
-        return 1 + x % self.switch.longest_run
+        self.state = xorshift32(self.state)
+        return 1 + self.state % self.switch.longest_run
 
     def clock(self, position):
         closed = switch_closed(self.switch, position, self.closed)

@@ -12,6 +12,16 @@ namespace {
 enum Input { ESTOP, LIMIT_POS_X, LIMIT_NEG_X, LIMIT_POS_Y, LIMIT_NEG_Y, HOME_X, HOME_Y, INPUTS };
 const int kInputAxis[INPUTS] = {-1, 0, 0, 1, 1, 0, 1};
 
+// The seeded xorshift32 step of models/sim_machine.py: `state` moves on, its new value returned.
+inline uint32_t xorshift32(uint32_t& state) {
+    uint32_t x = state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    state = x;
+    return x;
+}
+
 // One switch of models/sim_machine.py (Switch, _Contact): closed from
 // `position` on towards its side, open again `hysteresis` + 1 steps back,
 // `bounce` clocks of xorshift-timed chatter after each change.
@@ -29,12 +39,7 @@ struct Contact {
         return into >= (before ? -hysteresis : 0);
     }
     int64_t next_run() {
-        uint32_t x = state;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        state = x;
-        return 1 + static_cast<int64_t>(x % static_cast<uint64_t>(longest_run));
+        return 1 + static_cast<int64_t>(xorshift32(state) % static_cast<uint64_t>(longest_run));
     }
     void clock(int64_t at) {
         bool now = reads_closed(at, closed);
@@ -84,12 +89,7 @@ struct Motor {
         return static_cast<int32_t>(static_cast<uint32_t>(static_cast<uint64_t>(q)));
     }
     int64_t draw() {
-        uint32_t x = state;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        state = x;
-        return static_cast<int64_t>(x % static_cast<uint64_t>(jitter + 1));
+        return static_cast<int64_t>(xorshift32(state) % static_cast<uint64_t>(jitter + 1));
     }
     void follow() {
         int64_t then = steps;
