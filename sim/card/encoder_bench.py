@@ -9,7 +9,7 @@ that ends its clock: the model's method, then its ``clock``), and the
 unit's outputs are compared at the next falling edge.
 
 The waveforms are ``sim/card/encoder_waves.py``'s, the unit on its back end
-``sim/card/unit_under_test.py``'s ``Unit``, the defects the benches must
+``sim/card/backend_unit.py``'s ``Unit``, the defects the benches must
 reject ``sim/card/encoder_defects.py``'s.
 """
 import random
@@ -19,7 +19,7 @@ from rtl.encoder.encoder import encoder, encoder_ports
 from rtl.encoder.following_error import following_error, following_error_ports
 from rtl.encoder.probe import probe, probe_ports
 from sim.card.encoder_waves import FILTERS, Sample, encoder_waves
-from sim.card.unit_under_test import Unit
+from sim.card.backend_unit import Unit
 
 ONE = 1 << SCALE_FRACTION_BITS
 ENCODER_OUTPUTS = ("count", "direction", "quad_error", "error_count", "time", "armed", "latch", "fired")

@@ -19,7 +19,7 @@ from sim.backends.icarus import convert_and_cosimulate, convert_module
 from sim.backends.waves import run_traced
 from sim.card.encoder_bench import run_encoder, run_following_error, run_probe
 from sim.card.encoder_defects import DEFECTS, with_defect
-from sim.card.unit_under_test import HALF_PERIOD
+from sim.card.backend_unit import HALF_PERIOD
 
 BACKENDS = ["myhdl", "icarus"]
 # a Verilator model takes about 8 s to build (cached in build/vlt/ after): every one in the slow set
