@@ -38,9 +38,7 @@ from models.dda_axes import MoveIterator, arc_iterations
 from models.dda_build import DDA_MIN_WIDTH, PRECISE
 from models.dda_plan import ArcCommand, AxesLineCommand, plan_arc
 from rtl.convert import build_dir, convert_block
-from sim.backends.verilator.build import build_model
-from sim.backends.verilator.model import VerilatedModel
-from sim.card.dda_exhaustive import Tally, _mismatch, every_arc
+from sim.card.dda_exhaustive import Tally, _mismatch, every_arc, narrow_model
 
 NARROW_WIDTH = DDA_MIN_WIDTH
 AXES = 3
@@ -97,17 +95,8 @@ class NarrowAxes:
     """The Verilated narrow ``dda_axes`` of three axes, one line at a time."""
 
     def __init__(self, verilog):
-        self.model = VerilatedModel(build_model([verilog], "dda_axes"))
+        self.model = narrow_model(verilog, "dda_axes", PINS, cmd_line=1)
         self.width = self.model.ports["axes_cmd_delta_x"][1]
-        self.model.bind_clock("clock")
-        self.model.bind_pins(PINS)
-        self.model["reset"] = 0
-        self.model.tick(2)
-        self.model["reset"] = 1
-        self.model["cmd_advance"] = 1
-        self.model["cmd_line"] = 1
-        self.model.tick(2)
-        self.model.take_edges()
 
     def put(self, command):
         """Put ``command`` (a line, or an arc with its plane and helix) on the ports."""

@@ -116,20 +116,29 @@ def step_clocks(clocks, states, first, last):
             if state & (STEP_X | STEP_Y) for clock in range(int(start), end)]
 
 
+def narrow_model(verilog, top, pins, **held):
+    """The Verilated narrow ``top`` of ``verilog``, its ``pins`` recorded, out of reset with
+    ``cmd_advance`` and the ports ``held`` set, no edge kept yet."""
+    model = VerilatedModel(build_model([verilog], top))
+    model.bind_clock("clock")
+    model.bind_pins(pins)
+    model["reset"] = 0
+    model.tick(2)
+    model["reset"] = 1
+    model["cmd_advance"] = 1
+    for name, value in held.items():
+        model[name] = value
+    model.tick(2)
+    model.take_edges()
+    return model
+
+
 class NarrowDda:
     """The Verilated narrow ``dda_arc``, one move at a time."""
 
     def __init__(self, verilog):
-        self.model = VerilatedModel(build_model([verilog], "dda_arc"))
+        self.model = narrow_model(verilog, "dda_arc", PINS)
         self.width = self.model.ports["cmd_xs"][1]
-        self.model.bind_clock("clock")
-        self.model.bind_pins(PINS)
-        self.model["reset"] = 0
-        self.model.tick(2)
-        self.model["reset"] = 1
-        self.model["cmd_advance"] = 1
-        self.model.tick(2)
-        self.model.take_edges()
 
     def _coordinate(self, value):
         return value & ((1 << self.width) - 1)
