@@ -13,6 +13,7 @@ import pytest
 
 from formal import groups as catalogue
 from formal import mutation, trace
+from formal.proof_group import has_write_credit
 from formal.sby import Task, run, tools_available
 from rtl.convert import GEN_DIR
 
@@ -54,7 +55,7 @@ def test_fifo_path(tmp_path):
     basecase finds a run from reset with an acknowledged dword not taken
     for 8 clocks.  With the credit the group is a proof."""
     result = run(catalogue.group("pci_fifo_path").task(GEN_DIR), tmp_path)
-    if catalogue.has_write_credit(GEN_DIR / "pci_slave.v"):
+    if has_write_credit(GEN_DIR / "pci_slave.v"):
         assert result.passed, f"{result.status}: failed {result.failed}, trace {result.trace}"
     else:
         assert result.status == "FAIL" and "acknowledged_write_drains" in result.failed, result.status

@@ -6,6 +6,7 @@ import re
 import pytest
 
 from formal import groups as catalogue
+from formal.proof_group import PROPS
 
 DIRECTIVE = re.compile(r'^`(ifdef|ifndef|else|endif|include)\b\s*"?([\w.]*)', re.MULTILINE)
 # a LocalBus address compared with a literal (a register offset) or a PCI
@@ -47,14 +48,14 @@ def _included(path, available, defines):
 @pytest.mark.parametrize("name", [group.name for group in catalogue.GROUPS])
 def test_group_passes_every_included_file(name):
     group = catalogue.group(name)
-    passed = {path.name: path.read_text for path in (catalogue.PROPS / f for f in (*group.harness, *group.includes))}
+    passed = {path.name: path.read_text for path in (PROPS / f for f in (*group.harness, *group.includes))}
     passed.update({file: make for file, make in group.generated.items()})
-    top = catalogue.PROPS / group.harness[-1]
+    top = PROPS / group.harness[-1]
     missing = _included(top, passed, group.defines) - set(passed)
     assert not missing, f"{top.name} includes {sorted(missing)}, which group {name} does not pass"
 
 
-@pytest.mark.parametrize("path", sorted(catalogue.PROPS.glob("*_harness.sv")) + sorted(catalogue.PROPS.glob("*.vh")),
+@pytest.mark.parametrize("path", sorted(PROPS.glob("*_harness.sv")) + sorted(PROPS.glob("*.vh")),
                          ids=lambda path: path.name)
 def test_harness_names_table_constants(path):
     text = re.sub(r"//.*", "", path.read_text())
