@@ -7,34 +7,8 @@ from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkP
                             SetPort, card_reset)
 from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT, axis_operands
 from rtl.regs.command_header import command_header
+from rtl.regs.instruction_tables import OPERANDS_MAX, fits_width, header_field, opcode_rom, operand_mask
 from rtl.regs.operand_register import operand_register, signed_low
-
-
-def _opcode_rom(value_of):
-    """A 16-entry tuple, indexed by opcode, converted to a case statement."""
-    return tuple(value_of(isa.BY_CODE[code]) if code in isa.BY_CODE else 0 for code in range(16))
-
-
-def _operand_mask(op, kind):
-    """Bit i: operand i of ``op`` is ``kind`` ("coord": signed steps of a move,
-    "count": a PULSE count), whatever the axis mask (the longest form)."""
-    spec = op.axis_operands
-    names = isa.operand_names(op, {spec.field: (1 << isa.AXIS_MASK_WIDTH) - 1}) if spec else op.operands
-    is_kind = (lambda name: name.startswith("COUNT_")) if kind == "count" else (
-        lambda name: name in isa.SIGNED_OPERANDS and not name.startswith("COUNT_"))
-    return sum(1 << i for i, name in enumerate(names) if is_kind(name))
-
-
-# the most operand words a header frames: the fixed ones, the lead ones and one per bit of a full axis mask
-OPERANDS_MAX = max(len(op.fixed_operands) + (len(op.axis_operands.lead) + isa.AXIS_MASK_WIDTH
-                                             if op.axis_operands else 0) for op in isa.OPCODES)
-
-
-def _field(op_name, field_name):
-    for name, lsb, width, _ in isa.BY_NAME[op_name].header_fields:
-        if name == field_name:
-            return lsb, lsb + width
-    raise ValueError(f"{op_name} has no field {field_name}")
 
 
 @block
@@ -142,8 +116,8 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     arriving_coord_fits, arriving_count_fits = Signal(bool(0)), Signal(bool(0))
     kept = (1 << slot_count) - 1
-    coord_operands = _opcode_rom(lambda op: _operand_mask(op, "coord") & kept)
-    count_operands = _opcode_rom(lambda op: _operand_mask(op, "count") & kept)
+    coord_operands = opcode_rom(lambda op: operand_mask(op, "coord") & kept)
+    count_operands = opcode_rom(lambda op: operand_mask(op, "count") & kept)
     set_ok = tuple(int(i in set_indices) for i in range(1 << len(set_port.index)))
     built = tuple(int(code in dda.variants) for code in range(1 << len(dda.variant)))
     code = {op.name: op.code for op in isa.OPCODES}
@@ -151,15 +125,15 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         code["LINE"], code["ARC"], code["PULSE"], code["SET"], code["DWELL"], code["MARK"])
     E_NONE, E_BAD_OPCODE, E_RESERVED_BITS, E_RANGE, E_DDA_REJECTED = (
         isa.ERROR_CODE[name] for name in ("NONE", "BAD_OPCODE", "RESERVED_BITS", "RANGE", "DDA_REJECTED"))
-    ccw_lsb = _field("ARC", "CCW")[0]
-    blend_lsb = _field("ARC", "BLEND")[0]
-    if _field("LINE", "BLEND")[0] != blend_lsb:
+    ccw_lsb = header_field("ARC", "CCW")[0]
+    blend_lsb = header_field("ARC", "BLEND")[0]
+    if header_field("LINE", "BLEND")[0] != blend_lsb:
         raise ValueError("LINE and ARC must have BLEND in the same header bit")
-    variant_lsb, variant_msb = _field("ARC", "VARIANT")
-    lambda_lsb, lambda_msb = _field("ARC", "LAMBDA")
-    acc_lsb, acc_msb = _field("ARC", "ACC_BITS")
-    index_lsb, index_msb = _field("SET", "INDEX")
-    tag_lsb, tag_msb = _field("MARK", "TAG")
+    variant_lsb, variant_msb = header_field("ARC", "VARIANT")
+    lambda_lsb, lambda_msb = header_field("ARC", "LAMBDA")
+    acc_lsb, acc_msb = header_field("ARC", "ACC_BITS")
+    index_lsb, index_msb = header_field("SET", "INDEX")
+    tag_lsb, tag_msb = header_field("MARK", "TAG")
     reading = command_header(fifo.dout, arriving)
     # an operand goes to the lowest register left; a LINE header clears those of its card's axes (two
     # axes), an ARC header the ITERATIONS register and a move's or PULSE's header the axes' (more axes)
@@ -377,7 +351,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
                              or next_valid or word_due or fetched != 0 or not fifo.empty)
         control.motion_run.next = state == seq_t.S_MOTION
 
-    fits = [_fits(fifo.dout, arriving_coord_fits, coord_width), _fits(fifo.dout, arriving_count_fits, count_bits)]
+    fits = [fits_width(fifo.dout, arriving_coord_fits, coord_width), fits_width(fifo.dout, arriving_count_fits, count_bits)]
     if axes == 2:
         # a LINE header clears its axes' registers; the PULSE command's two-axis form; arcs in X, Y only
         @always_comb
@@ -411,19 +385,6 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     return (fits, reading, registers, axis_units, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
             operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
             dwell_count, present, report)
-
-
-@block
-def _fits(operand, fits, width):
-    """``fits``: the 32-bit ``operand`` is a ``width``-bit signed number (its top
-    bits are copies of bit ``width - 1``)."""
-    ones = (1 << (33 - width)) - 1
-
-    @always_comb
-    def sign_extension():
-        fits.next = operand[32:width - 1] == 0 or operand[32:width - 1] == ones
-
-    return sign_extension
 
 
 def sequencer_ports(coord_width=COORD_WIDTH.default, axes=AXES.default):
