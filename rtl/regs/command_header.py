@@ -4,11 +4,7 @@ from myhdl import ConcatSignal, Signal, always_comb, block, concat, intbv
 from models import instructions as isa
 from models.axes import XY_MASK, axes_of
 from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT
-
-
-def _opcode_rom(value_of):
-    """A 16-entry tuple, indexed by opcode, converted to a case statement."""
-    return tuple(value_of(isa.BY_CODE[code]) if code in isa.BY_CODE else 0 for code in range(16))
+from rtl.regs.instruction_tables import opcode_rom
 
 
 def _axis_field(op_name, field_name):
@@ -68,15 +64,15 @@ def command_header(word, header):
     u_lsb, u_msb = _axis_field("ARC", "U_AXIS")
     v_lsb, v_msb = _axis_field("ARC", "V_AXIS")
     mask_width = mask_msb - mask_lsb
-    known = _opcode_rom(lambda op: 1)
-    moves = _opcode_rom(lambda op: int(op.name in ("LINE", "ARC")))
-    fixed = _opcode_rom(lambda op: len(op.fixed_operands))
-    has_mask = _opcode_rom(lambda op: int(op.axis_operands is not None))
-    zero_mask = _opcode_rom(_zero_mask_operands)
-    lead = _opcode_rom(lambda op: len(op.axis_operands.lead) if op.axis_operands else 0)
-    some = _opcode_rom(lambda op: int(_fewest_operands(op) > 0))
-    mask_high = _opcode_rom(lambda op: op.axis_header_mask >> 16)
-    mask_low = _opcode_rom(lambda op: op.axis_header_mask & 0xFFFF)
+    known = opcode_rom(lambda op: 1)
+    moves = opcode_rom(lambda op: int(op.name in ("LINE", "ARC")))
+    fixed = opcode_rom(lambda op: len(op.fixed_operands))
+    has_mask = opcode_rom(lambda op: int(op.axis_operands is not None))
+    zero_mask = opcode_rom(_zero_mask_operands)
+    lead = opcode_rom(lambda op: len(op.axis_operands.lead) if op.axis_operands else 0)
+    some = opcode_rom(lambda op: int(_fewest_operands(op) > 0))
+    mask_high = opcode_rom(lambda op: op.axis_header_mask >> 16)
+    mask_low = opcode_rom(lambda op: op.axis_header_mask & 0xFFFF)
     code = {op.name: op.code for op in isa.OPCODES}
     line_op, arc_op, pulse_op = code["LINE"], code["ARC"], code["PULSE"]
     index_bits = len(header.u)
