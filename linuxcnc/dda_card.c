@@ -55,6 +55,7 @@
 #include "dda_drift.h"
 #include "dda_cards.h"
 #include "dda_encoder.h"
+#include "dda_unload.h"
 
 MODULE_AUTHOR("PCI DDA card authors");
 MODULE_DESCRIPTION("HAL driver of the PCI DDA card");
@@ -81,40 +82,7 @@ static uint32_t watchdog_clocks(struct card *c)
     return clocks > DDA_WATCHDOG_CLOCKS_MASK ? DDA_WATCHDOG_CLOCKS_MASK : (uint32_t)clocks;
 }
 
-/* The queue stops now: nothing more leaves the FIFO, the watchdog is off. */
-static void halt_card(struct card *c)
-{
-    c->running = 0;
-    *c->drift_trim = 0;
-    dda_write32(&c->transport, DDA_CONTROL, 0);
-    dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
-    dda_write32(&c->transport, DDA_WATCHDOG, 0);
-}
-
-static void stop(struct card *c, int code)
-{
-    *c->error = 1;
-    *c->error_code = code;
-    halt_card(c);
-}
-
-/* The card's guard holds it stopped (STATUS.STOPPED): why, on stop-reason.  When that
- * stops the machine (`stopping`): error -3, and a watchdog stop sets has_bit. */
-static void card_stopped(struct card *c, int stopping)
-{
-    uint32_t why = 0;
-    dda_read32(&c->transport, DDA_STOP_REASON, &why);
-    *c->stop_reason = (int32_t)FIELD(why, DDA_STOP_REASON_REASON);
-    if (!stopping)
-        return;
-    if (*c->stop_reason == DDA_STOP_WATCHDOG)
-        *c->watchdog_has_bit = 1;
-    stop(c, FAULT_CARD_STOPPED);
-    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped the machine: %s (STOP_REASON.AXIS %u)\n",
-                    c->transport.name, reason_name(*c->stop_reason), (unsigned)FIELD(why, DDA_STOP_REASON_AXIS));
-}
-
-static void read_card(void *arg, long period)
+static void read_pass(void *arg, long period)
 {
     struct card *c = arg;
     uint32_t raw[DDA_AXES_MAX], status = 0, active = 0;
@@ -304,7 +272,7 @@ static void start_queue(struct card *c, uint32_t clocks, double dt)
         stop(c, FAULT_TRANSPORT);
 }
 
-static void write_card(void *arg, long period)
+static void write_pass(void *arg, long period)
 {
     struct card *c = arg;
     uint64_t ticks = c->fraction + (uint64_t)period * c->clock_hz;
@@ -340,6 +308,10 @@ static void write_card(void *arg, long period)
         stop(c, FAULT_TRANSPORT);
     *c->clock = now;
 }
+
+/* The functions the servo thread calls: a pass, unless the driver is being unloaded. */
+static void read_card(void *arg, long period) { dda_guarded(read_pass, arg, period); }
+static void write_card(void *arg, long period) { dda_guarded(write_pass, arg, period); }
 
 static int export_funct(void (*funct)(void *, long), int k, const char *what)
 {
@@ -389,7 +361,10 @@ int rtapi_app_main(void)
 
 void rtapi_app_exit(void)
 {
-    int k;
+    int k, limit_ms = 2 * sim_timeout_ms + 1000;
+    if (dda_wait_outside(limit_ms) < 0)
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: a servo thread is still inside the driver after %d ms; "
+                        "unloading anyway\n", limit_ms);
     for (k = 0; k < card_count; k++) {
         halt_card(cards[k]);
         dda_write32(&cards[k]->transport, DDA_MACHINE_CONTROL, 0);

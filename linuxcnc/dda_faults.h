@@ -1,6 +1,7 @@
 /* The dda_card driver's fault checks: the faults that stand whatever
  * enable does, a card gone from the bus, why the card stopped itself, a
- * position-scale of 0.
+ * position-scale of 0; and what a fault does: the queue halted, error and
+ * error-code set, why the card stopped itself on stop-reason.
  * error-code values: dda_state.h.  Included by dda_card.c.
  *
  * Copyright the PCI DDA card authors.  GPL-2.0-or-later (see COPYING here).
@@ -10,6 +11,7 @@
 
 #include "dda_checks.h"
 #include "dda_state.h"
+#include "dda_transport.h"
 
 /* A fault that stands whatever enable does: the transport failed, the card gone, a
  * watchdog stop held by has_bit; else 0. */
@@ -51,6 +53,39 @@ static void check_scale(struct card *c, int i)
     s->position_scale = 1.0;
     rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.stepgen.%02d.position-scale 0 is no scale: set to 1\n",
                     c->index, i);
+}
+
+/* The queue stops now: nothing more leaves the FIFO, the watchdog is off. */
+static void halt_card(struct card *c)
+{
+    c->running = 0;
+    *c->drift_trim = 0;
+    dda_write32(&c->transport, DDA_CONTROL, 0);
+    dda_write32(&c->transport, DDA_COMMAND, DDA_COMMAND_SOFT_RESET_MASK);
+    dda_write32(&c->transport, DDA_WATCHDOG, 0);
+}
+
+static void stop(struct card *c, int code)
+{
+    *c->error = 1;
+    *c->error_code = code;
+    halt_card(c);
+}
+
+/* The card's guard holds it stopped (STATUS.STOPPED): why, on stop-reason.  When that
+ * stops the machine (`stopping`): error -3, and a watchdog stop sets has_bit. */
+static void card_stopped(struct card *c, int stopping)
+{
+    uint32_t why = 0;
+    dda_read32(&c->transport, DDA_STOP_REASON, &why);
+    *c->stop_reason = (int32_t)FIELD(why, DDA_STOP_REASON_REASON);
+    if (!stopping)
+        return;
+    if (*c->stop_reason == DDA_STOP_WATCHDOG)
+        *c->watchdog_has_bit = 1;
+    stop(c, FAULT_CARD_STOPPED);
+    rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: %s: the card stopped the machine: %s (STOP_REASON.AXIS %u)\n",
+                    c->transport.name, reason_name(*c->stop_reason), (unsigned)FIELD(why, DDA_STOP_REASON_AXIS));
 }
 
 #endif /* DDA_FAULTS_H */
