@@ -10,8 +10,8 @@
  * the last count edges; with no count since, at most one count in the
  * clocks since the last, so the last speed bounded by that, 0 beyond
  * vel-timeout), one axis's ENC_STATUS in turn (QUAD_ERROR is sticky on the
- * card), and ENC_CONTROL / PROBE_CONTROL only while an index or the probe
- * is armed.  `count` is the unwrapped count less `zero`: the count at the
+ * card; cleared, ENC_STATUS written, when quad-error-enable rises), and
+ * ENC_CONTROL / PROBE_CONTROL only while an index or the probe is armed.  `count` is the unwrapped count less `zero`: the count at the
  * last `reset` or index; the card's count itself runs on (rawcounts), so its
  * following error keeps its alignment.  Each `write`: ENC_CONTROL when
  * counter-mode, filter or index-invert changed, or (in a later period: a
@@ -220,7 +220,26 @@ static int encoder_probe(struct card *c)
     return 0;
 }
 
-/* QUAD_ERROR of one axis a period, in turn: quad-error while quad-error-enable, else cleared. */
+/* quad-error-enable of axis i, every period: at its rise the card's sticky QUAD_ERROR (and ERROR_COUNT)
+ * is cleared first, so only errors after it are reported, as hostmot2's (an illegal transition while
+ * it was FALSE, or before the driver loaded, is not); while it is FALSE `quad-error` is FALSE.
+ * 0, or -1 (transport: tried again next period). */
+static int encoder_quad_enable(struct card *c, int i)
+{
+    struct encoder *e = &c->encoder[i];
+    int enabled = *e->quad_error_enable != 0;
+    if (enabled && !e->quad_enabled
+        && dda_write32(&c->transport, DDA_AXIS_ENC_STATUS_OFFSET(i), DDA_AXIS_ENC_STATUS_QUAD_ERROR_MASK) < 0)
+        return -1;
+    e->quad_enabled = enabled;
+    if (!enabled)
+        *e->quad_error = 0;
+    return 0;
+}
+
+/* ENC_STATUS of one axis a period, in turn: `quad-error` is the card's sticky QUAD_ERROR while
+ * quad-error-enable is TRUE, said once when it rises (as hostmot2's "quadrature count error"; the
+ * encoder counts on: what to do is the HAL's, e.g. quad-error into the E-stop chain). */
 static int encoder_quad_error(struct card *c)
 {
     unsigned i = c->quad_axis++ % (unsigned)c->axes;
@@ -228,11 +247,13 @@ static int encoder_quad_error(struct card *c)
     uint32_t status = 0;
     if (dda_read32(&c->transport, DDA_AXIS_ENC_STATUS_OFFSET(i), &status) < 0)
         return -1;
-    status &= DDA_AXIS_ENC_STATUS_QUAD_ERROR_MASK;
-    *e->quad_error = *e->quad_error_enable && status;
-    if (!*e->quad_error_enable && status
-        && dda_write32(&c->transport, DDA_AXIS_ENC_STATUS_OFFSET(i), DDA_AXIS_ENC_STATUS_QUAD_ERROR_MASK) < 0)
-        return -1;
+    if (!e->quad_enabled)
+        return 0;
+    if ((status & DDA_AXIS_ENC_STATUS_QUAD_ERROR_MASK) && !*e->quad_error)
+        rtapi_print_msg(RTAPI_MSG_ERR, "dda_card: dda-card.%d.encoder.%02d: quadrature error (A and B changed "
+                        "in the same sample, not counted; %u since quad-error-enable)\n", c->index, (int)i,
+                        (unsigned)((status & DDA_AXIS_ENC_STATUS_ERROR_COUNT_MASK) >> DDA_AXIS_ENC_STATUS_ERROR_COUNT_SHIFT));
+    *e->quad_error = (status & DDA_AXIS_ENC_STATUS_QUAD_ERROR_MASK) != 0;
     return 0;
 }
 
@@ -255,7 +276,7 @@ static int dda_read_encoders(struct card *c)
         raw = dda_unwrap(e->raw, word);
         check_encoder_scale(c, i);
         encoder_rate(c, i, raw, time, stamp);
-        if (encoder_index(c, i, raw) < 0)
+        if (encoder_index(c, i, raw) < 0 || encoder_quad_enable(c, i) < 0)
             return -1;
         e->raw = raw;
         if (*e->reset)

@@ -71,6 +71,7 @@ struct encoder {
     double rate;                   /* counts per second at the last read */
     uint32_t control;              /* ENC_CONTROL as last written, INDEX_ARM aside; ~0: not yet */
     int armed;                     /* the index latch armed for index-enable, not yet seen to fire */
+    int quad_enabled;              /* quad-error-enable as `read` last saw it (its rise clears QUAD_ERROR) */
 };
 
 struct card {

@@ -2,7 +2,8 @@
 
 ``python -m sim.card.card_server --socket PATH --log FILE [--clock-hz N] [--axes N] [--encoders]
 [--free-run CLOCKS] [--ppm N] [--machine FILE [--estop CLOCK ...] [--stall AXIS@CLOCK ...]]
-[--encoder-walk CUE ...] [--index CUE ...] [--probe CUE ...]``
+[--encoder-walk CUE ...] [--encoder-pulses CUE ...] [--encoder-glitch CUE ...] [--index CUE ...]
+[--probe CUE ...]``
 opens ``CardSession("verilator", clock_hz=N, axes=N, encoders=...)`` (a card built to report N in
 CLOCK_HZ, of N axes, with encoder inputs with ``--encoders``), listens on PATH, serves one client
 and, when the client goes,
@@ -41,9 +42,16 @@ motor).
 
 ``--encoder-walk AXIS@CLOCK:COUNTS`` (repeatable) walks that axis's encoder
 A/B by COUNTS counts from that card clock on, one legal step every
-``encoder_pins.WALK_SPACING`` clocks; ``--index AXIS@CLOCK:WIDTH`` pulses its
-index high for WIDTH clocks, ``--probe CLOCK:WIDTH`` the card's probe input
-(``sim/card/encoder_pins.py``; all need ``--encoders``).  The log then has ``encoder_final``: every axis's ENC_COUNT.
+``encoder_pins.WALK_SPACING`` clocks; ``--encoder-pulses AXIS@CLOCK:COUNTS``
+gives it abs(COUNTS) step/dir pulses instead (B the direction from CLOCK on,
+1 up and 0 down, then A low and high WALK_SPACING clocks each per pulse: what
+the card's step/dir mode, hostmot2's counter mode, counts);
+``--encoder-glitch AXIS@CLOCK`` changes its A and B in the same clock (a
+quadrature error); walks, pulses and glitches are taken in the order of their
+clocks.  ``--index AXIS@CLOCK:WIDTH`` pulses its index high for WIDTH clocks,
+``--probe CLOCK:WIDTH`` the card's probe input (``sim/card/encoder_pins.py``;
+all need ``--encoders``).  The log's ``final`` then has ``ENC_COUNT`` and
+``ENC_STATUS``: every axis's.
 
 A real card goes on without its PC: with ``--free-run CLOCKS`` the server,
 once the client has gone (socket closed, however it died), runs the card on
@@ -66,7 +74,7 @@ from models.parameters import AXES, CLOCK_HZ, ParameterError
 from models.sim_machine import MOTOR_AXES, MachineConfig
 from sim.card.card_session import CardSession
 from sim.card.card_socket_server import FAILURES, CardServer
-from sim.card.encoder_pins import EncoderPins, parse_cue, parse_probe
+from sim.card.encoder_pins import EncoderPins, parse_cue, parse_glitch, parse_probe
 
 MAX_FREE_RUN = 1 << 30  # clocks
 MAX_PPM = 100_000
@@ -113,6 +121,12 @@ def parse_arguments(argv=None):
     parser.add_argument("--encoder-walk", action="append", default=[], metavar="AXIS@CLOCK:COUNTS",
                         help="walk that axis's encoder by COUNTS counts from that card clock on (repeatable; "
                              "needs --encoders)")
+    parser.add_argument("--encoder-pulses", action="append", default=[], metavar="AXIS@CLOCK:COUNTS",
+                        help="give that axis's encoder abs(COUNTS) step/dir pulses from that card clock on: B the "
+                             "direction (1 up), A low then high each pulse (repeatable; needs --encoders)")
+    parser.add_argument("--encoder-glitch", action="append", default=[], metavar="AXIS@CLOCK",
+                        help="change that axis's encoder A and B in the same card clock: a quadrature error "
+                             "(repeatable; needs --encoders)")
     parser.add_argument("--index", action="append", default=[], metavar="AXIS@CLOCK:WIDTH",
                         help="pulse that axis's index input high for WIDTH clocks (repeatable; needs --encoders)")
     parser.add_argument("--probe", action="append", default=[], metavar="CLOCK:WIDTH",
@@ -149,18 +163,18 @@ def parse_arguments(argv=None):
     if not -MAX_PPM <= args.ppm <= MAX_PPM:
         parser.error(f"--ppm must be {-MAX_PPM}..{MAX_PPM}, not {args.ppm}")
     pins = None
-    cued = args.encoder_walk or args.index or args.probe
+    cued = args.encoder_walk or args.encoder_pulses or args.encoder_glitch or args.index or args.probe
+    cue_options = "--encoder-walk, --encoder-pulses, --encoder-glitch, --index and --probe"
     if cued and not args.encoders:
-        parser.error("--encoder-walk, --index and --probe need --encoders: a card without encoders has no such pins")
+        parser.error(f"{cue_options} need --encoders: a card without encoders has no such pins")
     if cued and machine is not None and machine.motors:
-        parser.error("--encoder-walk, --index and --probe drive the encoder pins the --machine's motors drive: "
-                     "give one or the other")
+        parser.error(f"{cue_options} drive the encoder pins the --machine's motors drive: give one or the other")
     if cued:
         pins = EncoderPins(args.axes)
         try:
-            for axis, clock, counts in sorted((parse_cue(cue, args.axes) for cue in args.encoder_walk),
-                                              key=lambda cue: cue[1]):
-                pins.walk(axis, clock, counts)
+            pins.cue(walks=[parse_cue(cue, args.axes) for cue in args.encoder_walk],
+                     pulses=[parse_cue(cue, args.axes) for cue in args.encoder_pulses],
+                     glitches=[parse_glitch(cue, args.axes) for cue in args.encoder_glitch])
             for cue in args.index:
                 pins.pulse(*parse_cue(cue, args.axes))
             for cue in args.probe:

@@ -219,8 +219,8 @@ class CardServer:
         self.free_run["end"] = self.now()
         self.final = {name: self.session.read(regmap.offset(name)) for name in FINAL_REGISTERS}
         if self.pins is not None:
-            self.final["ENC_COUNT"] = [self.session.read(regmap.axis_offset("ENC_COUNT", axis))
-                                       for axis in range(self.pins.axes)]
+            for name in ("ENC_COUNT", "ENC_STATUS"):
+                self.final[name] = [self.session.read(regmap.axis_offset(name, axis)) for axis in range(self.pins.axes)]
 
     def record(self):
         """What the test compares: clocks are card clocks since the server opened the card."""

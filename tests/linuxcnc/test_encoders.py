@@ -1,8 +1,9 @@
 """The dda_card driver's encoder pins (hostmot2's encoder) under halrun, on simulated cards built with
-encoders whose encoder pins the card server drives on cue (``--encoder-walk``, ``--index``:
-``sim/card/encoder_pins.py``), beside a card without encoders.
+encoders whose encoder pins the card server drives on cue (``--encoder-walk``, ``--encoder-pulses``,
+``--encoder-glitch``, ``--index``: ``sim/card/encoder_pins.py``), beside a card without encoders.
 
-Golden values come from the cues (counts walked, the walk's edge spacing, the index's clock), not from
+Golden values come from the cues (counts walked, the walk's edge spacing, the index's clock, the pulse
+trains and glitches played into the golden encoder model, models/encoder_model.py), not from
 the driver: a walk of N counts one edge every WALK_SPACING clocks is N counts at
 CLOCK_HZ / WALK_SPACING counts per second.  docs/linuxcnc.md, "Encoders".
 """
@@ -12,7 +13,9 @@ from collections import Counter
 import pytest
 
 from models import registers as regmap
-from sim.card.encoder_pins import WALK_SPACING
+from models.encoder_model import MODE_QUADRATURE, MODE_STEP_DIR, EncoderModel
+from sim.card.card_server import parse_arguments
+from sim.card.encoder_pins import WALK_SPACING, play
 from tests.linuxcnc.halrun import note, run_halrun, until
 from tests.linuxcnc.session import CLOCK_HZ, PERIOD_CLOCKS, missing, run_folder
 
@@ -94,7 +97,7 @@ def _pins(path):
 
 
 @pytest.mark.slow(reason="two card servers and 0.35 s of card time in lock-step: 25 to 50 s here; "
-                         "test_encoder_index_handshake covers the pins and the index in the default set")
+                         "test_encoder_index_counter_mode_and_quad_error covers the pins and the index in the default set")
 def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     """A 3-axis card with encoders and a 2-axis card without, under one driver: hostmot2's encoder
     pins and parameters on every axis of the first only, and the inputs of Z on the first only;
@@ -162,34 +165,92 @@ def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     shutil.rmtree(run, ignore_errors=True)
 
 
-ONE_CARD = """loadrt threads name1=servo-thread period1=1000000
+ONE_CARD_LOADED = """loadrt threads name1=servo-thread period1=1000000
 loadrt dda_card sim={run}/card.sock
 addf dda-card.0.read servo-thread
 addf dda-card.0.write servo-thread
-start
 """
-SHORT_WALK = 40        # counts walked on Y before its index
-SHORT_CUES = {"walk": 20_000, "index": 30_000}
+ONE_CARD = ONE_CARD_LOADED + "start\n"
+# later.sh PIN N: wait (at most 60 s) until halcmd getp PIN prints a number >= its value now + N
+LATER = ('#!/bin/sh\nt=$(( $(halcmd getp "$1") + $2 )); for i in $(seq 3000); do [ "$(halcmd getp "$1")" -ge "$t" ] '
+         '&& exit 0; sleep 0.02\ndone\necho "later: $1 is $(halcmd getp "$1"), not >= $t" >&2; exit 1\n')
+X_COUNTER_SCALE = 10.0  # X's counts per position unit in counter mode
+TRAINS = ((5_000, 25), (10_000, -10))   # step/dir pulse trains on X (counter mode) and Y (quadrature): 25 up, 10 down
+SHORT_WALK = 40         # counts walked on Y before its index
+AFTER_GLITCH = 20       # counts walked on Y after its second glitch
+SHORT_CUES = {"glitch at load": 1, "walk": 20_000, "index": 30_000, "glitch": 40_000, "after glitch": 45_000,
+              "noted": 47_000}
 
 
-def test_encoder_index_handshake(linuxcnc_alone):
-    """The default set's look at the encoders (the slow test above has the rest): on a 2-axis card
-    with encoders, an encoder per axis and no input of Z; Y's walk read as its count; index-enable
-    set, the next index zeroes count there and index-enable falls."""
+def _short_options():
+    options = ["--encoders", "--encoder-walk", f"1@{SHORT_CUES['walk']}:{SHORT_WALK}",
+               "--index", f"1@{SHORT_CUES['index']}:{INDEX_WIDTH}",
+               "--encoder-glitch", f"1@{SHORT_CUES['glitch at load']}", "--encoder-glitch", f"1@{SHORT_CUES['glitch']}",
+               "--encoder-walk", f"1@{SHORT_CUES['after glitch']}:{AFTER_GLITCH}"]
+    for axis in (0, 1):
+        options += [item for clock, pulses in TRAINS for item in ("--encoder-pulses", f"{axis}@{clock}:{pulses}")]
+    return options
+
+
+def _model_counts(options, axis, clock, mode):
+    """Axis ``axis``'s count at card clock ``clock`` by the golden encoder model (at the driver's filter,
+    15 clocks) in ``mode``, on the pins the card server's ``options`` cue."""
+    *_, pins = parse_arguments(["--socket", "unused", "--log", "unused", *options])
+    model = EncoderModel()
+    model.filter, model.mode = 14, mode
+    play(pins.due(clock), axis, clock, model)
+    return model.signed_count
+
+
+def test_encoder_index_counter_mode_and_quad_error(linuxcnc_alone):
+    """The default set's look at the encoders (the slow test above has the rest), a 2-axis card with
+    encoders: an encoder per axis and no pin of a third.  Y (quadrature): the same step/dir pulse trains
+    as X's counted by the Gray code, as the golden model counts them, then a walk; index-enable set, the
+    next index zeroes count there and index-enable falls.  X in counter-mode: the trains' pulses, 25 up
+    and 10 down, counted one each, position count / scale.  quad-error-enable TRUE on both from load: a
+    glitch of Y's A and B while the driver loads is not reported (as hostmot2, errors from before the
+    enable are dropped); the glitch after it sets Y's quad-error (said once), not X's (quadrature by
+    then), and Y's count does not move at it; quad-error-enable FALSE clears it, TRUE again reads FALSE."""
     run = run_folder()
-    (run / "atleast.sh").write_text(ATLEAST)
-    (run / "atleast.sh").chmod(0o755)
-    script = ONE_CARD.format(run=run) + (
+    for name, text in (("atleast.sh", ATLEAST), ("later.sh", LATER)):
+        (run / name).write_text(text)
+        (run / name).chmod(0o755)
+    options = _short_options()
+    script = ONE_CARD_LOADED.format(run=run) + (
+        f"setp {E}.00.counter-mode 1\nsetp {E}.00.scale {X_COUNTER_SCALE}\n"
+        f"setp {E}.00.quad-error-enable 1\nsetp {E}.01.quad-error-enable 1\nstart\n"
         f"setp {E}.01.index-enable 1\nloadusr -w ./atleast.sh dda-card.0.clock {SHORT_CUES['walk']}\n"
         + note(f"{E}.01.index-enable") + until(f"{E}.01.index-enable", "FALSE")
-        + note(f"{E}.01.count", f"{E}.01.rawcounts", f"{E}.00.count"))
-    options = ("--encoders", "--encoder-walk", f"1@{SHORT_CUES['walk']}:{SHORT_WALK}",
-               "--index", f"1@{SHORT_CUES['index']}:{INDEX_WIDTH}")
+        + note(f"{E}.01.count", f"{E}.01.rawcounts", f"{E}.00.count", f"{E}.00.position", f"{E}.00.quad-error",
+               f"{E}.01.quad-error")
+        # X to quadrature (its trains are over): a quadrature error could show on X too from here on
+        + f"setp {E}.00.counter-mode 0\nloadusr -w ./atleast.sh dda-card.0.clock {SHORT_CUES['noted']}\n"
+        + note(f"{E}.01.quad-error", f"{E}.00.quad-error", f"{E}.01.count", f"{E}.01.rawcounts")
+        + f"setp {E}.01.quad-error-enable 0\n" + until(f"{E}.01.quad-error", "FALSE")
+        + f"setp {E}.01.quad-error-enable 1\nloadusr -w ./later.sh dda-card.0.clock 5000\n" + note(f"{E}.01.quad-error"))
     output, notes, records = run_halrun(run, script, {"card": options})
+    # golden counts: the model on the cued pins, X in step/dir, Y in quadrature
+    x_counts = _model_counts(options, 0, SHORT_CUES["walk"], MODE_STEP_DIR)
+    y_trains = _model_counts(options, 1, SHORT_CUES["walk"], MODE_QUADRATURE)
+    y_at_index = _model_counts(options, 1, SHORT_CUES["index"], MODE_QUADRATURE)
+    y_noted = _model_counts(options, 1, SHORT_CUES["noted"], MODE_QUADRATURE)
+    assert x_counts == 25 - 10 and y_trains != x_counts
+    assert y_at_index == y_trains + SHORT_WALK and y_noted == y_at_index + AFTER_GLITCH
     assert notes[f"{E}.01.index-enable"] == ["TRUE"], "index-enable fell before the index"
-    assert notes[f"{E}.01.count"] == ["0"] and notes[f"{E}.01.rawcounts"] == [str(SHORT_WALK)]
-    assert notes[f"{E}.00.count"] == ["0"] and f"{E}.02." not in output
-    assert records["card"]["final"]["ENC_COUNT"] == [0, SHORT_WALK]
+    assert notes[f"{E}.01.count"][0] == "0" and notes[f"{E}.01.rawcounts"][0] == str(y_at_index)
+    assert notes[f"{E}.00.count"] == [str(x_counts)] and float(notes[f"{E}.00.position"][0]) == x_counts / X_COUNTER_SCALE
+    assert f"{E}.02." not in output
+    # the glitch at load: dropped; the one after the enable: Y's only, no count, said once
+    assert notes[f"{E}.01.quad-error"][:2] == ["FALSE", "TRUE"] and notes[f"{E}.00.quad-error"] == ["FALSE", "FALSE"]
+    assert notes[f"{E}.01.count"][1] == str(AFTER_GLITCH) and notes[f"{E}.01.rawcounts"][1] == str(y_noted)
+    assert output.count("quadrature error") == 1
+    assert "dda-card.0.encoder.01: quadrature error (A and B changed in the same sample, not counted; 1 since" in output
+    # quad-error-enable FALSE cleared it; TRUE again reads FALSE, the card's flag cleared
+    assert notes[f"{E}.01.quad-error"][2] == "FALSE"
+    final = records["card"]["final"]
+    assert final["ENC_COUNT"] == [x_counts, y_noted & 0xFFFFFFFF]
+    quad_error = regmap.axis_spec("ENC_STATUS").field("QUAD_ERROR").mask
+    assert [status & quad_error for status in final["ENC_STATUS"]] == [0, 0]
     shutil.rmtree(run, ignore_errors=True)
 
 
