@@ -178,14 +178,14 @@ X_COUNTER_SCALE = 10.0  # X's counts per position unit in counter mode
 TRAINS = ((5_000, 25), (10_000, -10))   # step/dir pulse trains on X (counter mode) and Y (quadrature): 25 up, 10 down
 SHORT_WALK = 40         # counts walked on Y before its index
 AFTER_GLITCH = 20       # counts walked on Y after its second glitch
-SHORT_CUES = {"glitch at load": 1, "walk": 20_000, "index": 30_000, "glitch": 40_000, "after glitch": 45_000,
+SHORT_CUES = {"glitch before enable": 1, "walk": 20_000, "index": 30_000, "glitch": 40_000, "after glitch": 45_000,
               "noted": 47_000}
 
 
 def _short_options():
     options = ["--encoders", "--encoder-walk", f"1@{SHORT_CUES['walk']}:{SHORT_WALK}",
                "--index", f"1@{SHORT_CUES['index']}:{INDEX_WIDTH}",
-               "--encoder-glitch", f"1@{SHORT_CUES['glitch at load']}", "--encoder-glitch", f"1@{SHORT_CUES['glitch']}",
+               "--encoder-glitch", f"1@{SHORT_CUES['glitch before enable']}", "--encoder-glitch", f"1@{SHORT_CUES['glitch']}",
                "--encoder-walk", f"1@{SHORT_CUES['after glitch']}:{AFTER_GLITCH}"]
     for axis in (0, 1):
         options += [item for clock, pulses in TRAINS for item in ("--encoder-pulses", f"{axis}@{clock}:{pulses}")]
@@ -207,8 +207,8 @@ def test_encoder_index_counter_mode_and_quad_error(linuxcnc_alone):
     encoders: an encoder per axis and no pin of a third.  Y (quadrature): the same step/dir pulse trains
     as X's counted by the Gray code, as the golden model counts them, then a walk; index-enable set, the
     next index zeroes count there and index-enable falls.  X in counter-mode: the trains' pulses, 25 up
-    and 10 down, counted one each, position count / scale.  quad-error-enable TRUE on both from load: a
-    glitch of Y's A and B while the driver loads is not reported (as hostmot2, errors from before the
+    and 10 down, counted one each, position count / scale.  quad-error-enable TRUE on both after a glitch
+    of Y's A and B at card clock 1: that glitch is not reported (as hostmot2, errors from before the
     enable are dropped); the glitch after it sets Y's quad-error (said once), not X's (quadrature by
     then), and Y's count does not move at it; quad-error-enable FALSE clears it, TRUE again reads FALSE."""
     run = run_folder()
@@ -218,7 +218,9 @@ def test_encoder_index_counter_mode_and_quad_error(linuxcnc_alone):
     options = _short_options()
     script = ONE_CARD_LOADED.format(run=run) + (
         f"setp {E}.00.counter-mode 1\nsetp {E}.00.scale {X_COUNTER_SCALE}\n"
-        f"setp {E}.00.quad-error-enable 1\nsetp {E}.01.quad-error-enable 1\nstart\n"
+        # quad-error-enable rises after the glitch at clock 1 (the card's clock runs only with the thread)
+        f"start\nloadusr -w ./atleast.sh dda-card.0.clock 2\n"
+        f"setp {E}.00.quad-error-enable 1\nsetp {E}.01.quad-error-enable 1\n"
         f"setp {E}.01.index-enable 1\nloadusr -w ./atleast.sh dda-card.0.clock {SHORT_CUES['walk']}\n"
         + note(f"{E}.01.index-enable") + until(f"{E}.01.index-enable", "FALSE")
         + note(f"{E}.01.count", f"{E}.01.rawcounts", f"{E}.00.count", f"{E}.00.position", f"{E}.00.quad-error",
@@ -240,7 +242,7 @@ def test_encoder_index_counter_mode_and_quad_error(linuxcnc_alone):
     assert notes[f"{E}.01.count"][0] == "0" and notes[f"{E}.01.rawcounts"][0] == str(y_at_index)
     assert notes[f"{E}.00.count"] == [str(x_counts)] and float(notes[f"{E}.00.position"][0]) == x_counts / X_COUNTER_SCALE
     assert f"{E}.02." not in output
-    # the glitch at load: dropped; the one after the enable: Y's only, no count, said once
+    # the glitch before the enable: dropped; the one after the enable: Y's only, no count, said once
     assert notes[f"{E}.01.quad-error"][:2] == ["FALSE", "TRUE"] and notes[f"{E}.00.quad-error"] == ["FALSE", "FALSE"]
     assert notes[f"{E}.01.count"][1] == str(AFTER_GLITCH) and notes[f"{E}.01.rawcounts"][1] == str(y_noted)
     assert output.count("quadrature error") == 1
