@@ -108,8 +108,8 @@ def parse_arguments(argv=None):
     parser.add_argument("--estop", type=int, action="append", default=[], metavar="CLOCK",
                         help="toggle the simulated machine's E-stop at this card clock (repeatable; needs --machine)")
     parser.add_argument("--stall", action="append", default=[], metavar="AXIS@CLOCK",
-                        help="stall the simulated machine's motor of AXIS (X, Y, ... of the card) from this card clock on "
-                             "(repeatable; needs a motor on AXIS in --machine)")
+                        help="stall the simulated machine's motor of AXIS (X, Y, ... of the card) from this card "
+                             "clock on (repeatable; needs a motor on AXIS in --machine)")
     parser.add_argument("--encoder-walk", action="append", default=[], metavar="AXIS@CLOCK:COUNTS",
                         help="walk that axis's encoder by COUNTS counts from that card clock on (repeatable; "
                              "needs --encoders)")

@@ -192,3 +192,30 @@ def test_a_z_limit_switch_of_the_machine_stops_the_card_naming_it():
         reason, drive = card.stop_reason(), transport.session.pin("drive_enable")
     assert reason == ("LIMIT", ("LIMIT_POS_Z",)) and not drive
     assert 15 <= state.positions[2] < 40 and state.pin("LIMIT_POS_Z")
+
+
+@pytest.mark.slow(reason="the three-axis MyHDL card with encoders, 8 s of CPU; its machine process is the golden "
+                         "model itself: the two-axis MyHDL card above checks its wiring by default, the three-axis "
+                         "Verilator card the compiled machine clock for clock")
+def test_the_myhdl_three_axis_card_counts_its_z_motor_and_a_z_stall_stops_it_on_z():
+    config = MachineConfig(motors={"Z": Motor(counts_per_step=(3, 2), spacing=3)})
+    with SimTransport("myhdl", machine=config, encoders=1, axes=3) as transport:
+        card = Card(transport)
+        card.configure(steps_per_mm=(200.0,) * 3)
+        encoders.set_following_error(card, 2, Z_SCALE, Z_LIMIT)
+        card.start(interrupts=("ERROR", "DONE"))
+        card.set("FEED_RATE", 30000)
+        card.drive(True)
+        _line(card, 3, -2, -7)
+        card.wait_done()
+        transport.sleep(1e-6)
+        state = transport.machine.state()
+        read = tuple(encoders.read_encoder(card, axis).count for axis in range(3))
+        transport.machine.stall(2)
+        _line(card, 0, 1, 8)             # the fifth step lost is 7.5 counts behind: past the limit of 6
+        with pytest.raises(MachineStopped, match="FOLLOWING_ERROR"):
+            card.wait_done()
+        reason, drive = card.stop_reason(), transport.session.pin("drive_enable")
+    assert state.positions == (3, -2, -7) and state.counts == (None, None, -10)   # -10.5 rounds up to -10
+    assert read == (0, 0, -10)
+    assert reason == ("FOLLOWING_ERROR", ("Z",)) and not drive
