@@ -25,6 +25,7 @@ from host.transports.simulated import SimTransport
 from models import registers as regmap
 from models.encoder_model import SCALE_FRACTION_BITS, EncoderModel
 from models.sim_machine import MOTOR_AXES
+from sim.backends.verilator.model import DRIVE_BIT
 
 STEP_BITS, DIR_BITS = (1, 4), (2, 8)   # the pin log's bits of STEP_X, STEP_Y and DIR_X, DIR_Y
 GUARD_CLOCKS = 1   # the guard latches the edge after the following-error flag
@@ -65,7 +66,7 @@ def _scale(motor):
 
 
 def _drive_low(changes, since):
-    return next((int(c) for c, w in zip(*changes) if c >= since and not int(w) >> 7 & 1), None)
+    return next((int(c) for c, w in zip(*changes) if c >= since and not int(w) >> DRIVE_BIT & 1), None)
 
 
 def motor_run(config, moves, limit, feed_rate=1000, read_every=2000, stall_after=None, settle=4000):
@@ -101,14 +102,14 @@ def motor_run(config, moves, limit, feed_rate=1000, read_every=2000, stall_after
             pass
         transport.session.wait(settle)
         last = transport.clocks
-        readings = [encoders.read_encoder(card, axis) for axis in range(len(MOTOR_AXES))]
+        readings = [encoders.read_encoder(card, axis) for axis in range(card.identity.axes)]
         run = dict(counts=tuple(r.count for r in readings), ferror=tuple(r.ferror for r in readings),
                    positions=tuple(card.position()), ferror_reads=tuple(tuple(r) for r in reads),
                    stop_reason=card.read("STOP_REASON"), drive_low_at=_drive_low(model.take_machine_changes(), first),
                    stall_at=stall_at, step_width=card.timing["STEP_WIDTH"], machine=transport.machine.state())
         encoder_changes = list(zip(*(a.tolist() for a in model.take_encoder_changes())))
         edges = list(transport.pins.edges)
-    scales = [_scale(config.motors[name]) if name in config.motors else 0 for name in MOTOR_AXES]
+    scales = [_scale(config.motors[name]) if name in config.motors else 0 for name in MOTOR_AXES[:2]]
     worst, final, stop_at = replay(edges, encoder_changes, last, scales, limit)
     x_rises = tuple(clock for (clock, state), before in zip(edges, [0] + [s for _, s in edges])
                     if state & STEP_BITS[0] and not before & STEP_BITS[0])

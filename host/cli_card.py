@@ -3,11 +3,13 @@
 ``--card`` names it: ``verilator``, ``myhdl`` or ``icarus`` (the simulated
 card; ``--sim KIND`` says the same), ``pci`` (the one real card in this
 machine) or ``pci:DDDD:BB:DD.F`` (that one).  ``run --encoders`` runs the
-Verilator card built with encoders, its simulated machine's motors (those of
-``--machine``, else one on X and one on Y as ``Motor()`` has them) turning
-its steps into encoder counts, and reports the path the encoders measured
-beside the pins' (``host/encoder_path.py``).  Every option is checked before
-the card is opened or anything is written.
+simulated card (Verilator or MyHDL) built with encoders, its simulated
+machine's motors (those of ``--machine``, else one on every axis of the card
+as ``Motor()`` has them) turning its steps into encoder counts, and reports
+the path the encoders measured beside the pins' on every axis
+(``host/encoder_path.py``) and whether the counts ended on the steps times
+the counts per step.  Every option is checked before the card is opened or
+anything is written.
 """
 import argparse
 import dataclasses
@@ -23,16 +25,19 @@ from host.card import Card
 from host.machine_io import MachineStopped
 from host.check import check
 from host.geometry import dimension
-from host.pin_measure import deviation, junction_gaps, pin_moves, pin_moves_of_points, pin_points
+from host.pin_measure import deviation, junction_gaps, pin_moves, pin_moves_of_points
 from host.planner import plan
 from host.selftest import selftest
 from host.stream import Stopped, stream
 from host.errors import ProgramError
 from host.transports import SIM_KINDS, open_transport
+from models.motor_model import round_ratio
+from models.parameters import AXES
 from models.sim_machine import MOTOR_AXES, MachineConfig, Motor
 from models.axes import names
 
 STOP_EXIT = 130  # the shell's code for a job ended by SIGINT
+ENCODER_KINDS = ("verilator", "myhdl")   # the simulated cards whose machine records the encoder pins
 SETTLE_SECONDS = 1e-4   # card time between two looks at the encoders after the job, until they stand
 SETTLE_LOOKS = 200
 
@@ -71,8 +76,9 @@ def add_commands(commands, positive, scales, count, axis_count):
     run.add_argument("--preview", help="simulated card: draw the pins' path over the drawing into this PNG "
                                        "(with --encoders, the measured path too)")
     run.add_argument("--encoders", action="store_true",
-                     help="--card verilator built with encoders, the simulated machine's motors (--machine's, "
-                          "else the default one on X and Y) on them: report the path the encoders measured")
+                     help="--card verilator or myhdl built with encoders, the simulated machine's motors "
+                          "(--machine's, else the default one on every axis) on them: report the path the "
+                          "encoders measured")
     run.add_argument("--ferror-limit", type=_limit, metavar="COUNTS",
                      help="with --encoders: FERROR_LIMIT of each motor's axis, counts (default 0: no stop)")
     for name, text in (("info", "identify the card and print what it reports"),
@@ -98,13 +104,13 @@ def encoder_options(options, spec, opening, refuse):
         if options.ferror_limit is not None:
             refuse("--ferror-limit needs --encoders")
         return None
-    if spec != "verilator":
-        refuse("--encoders runs on --card verilator: its simulated machine records the encoder pins")
-    if options.axes not in (None, 2):
-        refuse(f"--encoders: the simulated machine's motors turn X and Y: a 2-axis card, not --axes {options.axes}")
+    if spec not in ENCODER_KINDS:
+        refuse(f"--encoders runs on --card {' or '.join(ENCODER_KINDS)}: its simulated machine records the "
+               "encoder pins")
     machine = machine or MachineConfig()
     if not machine.motors:
-        machine = dataclasses.replace(machine, motors={name: Motor() for name in MOTOR_AXES})
+        axes = options.axes or AXES.default
+        machine = dataclasses.replace(machine, motors={name: Motor() for name in MOTOR_AXES[:axes]})
     opening.update(machine=machine, encoders=1)
     return machine.motors
 
@@ -132,6 +138,11 @@ def transport_options(options, spec, refuse):
     if config.motors and not getattr(options, "encoders", False):
         refuse(f"--machine {path}: its motors need --encoders (python -m host run: a card built with encoder "
                "inputs)")
+    axes = getattr(options, "axes", None) or AXES.default
+    try:
+        config.check_axes(axes)
+    except ValueError as error:
+        refuse(f"--machine {path}: {error}")
     return {"machine": config}
 
 
@@ -199,7 +210,7 @@ def run_command(options, refuse, per_axis):
         except MachineStopped as error:   # E-stop, limit, watchdog or following error: what was measured
             print(f"stopped:    {error}; position {card.position()} steps")
             if motors:
-                _encoders_report(card, planned, model, transport, first_rise, motors)
+                _encoders_report(card, planned, model, transport, first_rise, motors, axes)
             return 1
         finally:
             stop.restore()
@@ -211,7 +222,8 @@ def run_command(options, refuse, per_axis):
         print(f"job time:   {model.job_seconds:.4f} s planned; {result.seconds:.4f} s of card time")
         ended = result.position == tuple(planned.end[:len(result.position)])
         if transport.clocks is not None:
-            encoder_path = _encoders_report(card, planned, model, transport, first_rise, motors) if motors else None
+            encoder_path = (_encoders_report(card, planned, model, transport, first_rise, motors, axes)
+                            if motors else None)
             pins_end = _pins_report(planned, model, transport, first_rise, options.preview, card.timing["DIR_SETUP"],
                                     axes, encoder_path)
             if axes > 2:
@@ -255,27 +267,37 @@ def _pins_report(planned, model, transport, first_rise, preview, dir_setup, axes
     return moves[-1][1][-1] if moves else None
 
 
-def _encoders_report(card, planned, model, transport, first_rise, motors):
-    """Print what the encoders measured (counts, ENC_FERROR, the path against the drawing and the pins,
-    ``host/encoder_path.py``) once they stand; the ``Measured``."""
+def _encoders_report(card, planned, model, transport, first_rise, motors, axes):
+    """Print what the encoders measured (counts, ENC_FERROR, the path against the drawing and the pins on
+    every axis, ``host/encoder_path.py``; whether the counts ended on the pins' steps times the counts per
+    step) once they stand; the ``Measured``."""
     counts = None
     for _ in range(SETTLE_LOOKS):   # the last steps' counts come after the lag and the spacing
         transport.sleep(SETTLE_SECONDS)
         if transport.machine.state().counts == counts:
             break
         counts = transport.machine.state().counts
-    readings = [encoders.read_encoder(card, axis) for axis in range(len(MOTOR_AXES))]
+    readings = [encoders.read_encoder(card, axis) for axis in range(axes)]
     reason, which = card.stop_reason()
-    ratios = [motors[name].ratio if name in motors else (1, 1) for name in MOTOR_AXES]
+    ratios = [motors[name].ratio if name in motors else (1, 1) for name in MOTOR_AXES[:axes]]
     samples = encoder_samples(transport.encoder_changes(), ratios)
-    rises = _pin_rises(transport.pins, 2)[first_rise:]
-    points = [(rise[0], point) for rise, point in zip(rises, pin_points(rises)[1:])]
-    result = measure(planned, model, [s for s in samples if s[0] >= (rises[0][0] if rises else 0)], points, (0, 0))
-    print(f"encoders:   counts {tuple(r.count for r in readings)} (ENC_COUNT) = "
-          f"({', '.join(f'{p:.3f}' for p in samples[-1][1]) if samples else '0, 0'}) steps; ENC_FERROR "
+    all_rises = transport.pins.axis_rises(axes)
+    rises = all_rises[first_rise:]
+    start = all_rises[first_rise - 1][1] if first_rise else (0,) * axes
+    result = measure(planned, model, [s for s in samples if s[0] >= (rises[0][0] if rises else 0)], rises, start)
+    end = rises[-1][1] if rises else start
+    expected = tuple(round_ratio(steps, *ratio) if name in motors else 0
+                     for steps, ratio, name in zip(end, ratios, MOTOR_AXES))
+    got = tuple(r.count for r in readings)
+    print(f"encoders:   counts {got} (ENC_COUNT) = "
+          f"({', '.join(f'{p:.3f}' for p in (samples[-1][1] if samples else (0,) * axes))}) steps; ENC_FERROR "
           f"{tuple(r.ferror for r in readings)} counts; stop {' '.join([reason, *which]) if which else reason}")
+    print(f"counts end: {'exact' if got == expected else 'NOT exact'}: the pins' {end} steps x counts per step "
+          f"= {expected}")
     print(f"measured:   {result.samples} encoder samples; max deviation from the drawing {result.drawing_mm:.5f} mm "
           f"(at {result.drawing_where or '-'}), from the pins {result.pins_mm:.5f} mm (at clock {result.pins_clock})")
+    apart = ", ".join(f"{names([axis])} {steps:.3f}" for axis, steps in enumerate(result.pins_steps))
+    print(f"per axis:   max |encoders - pins| {apart} steps")
     return result
 
 

@@ -2,7 +2,7 @@
 path"), beside the one its STEP/DIR pins made.
 
 The simulated machine's motors (``models/sim_machine.py``'s ``Motor``) turn the card's steps into
-encoder pins; the Verilator harness records every change of them (``SimTransport.encoder_changes``:
+encoder pins; the simulated machine records every change of them (``SimTransport.encoder_changes``:
 the clock after whose edge the word was set, the word: bit 3n axis n's A, 3n + 1 its B).
 
 * ``encoder_samples(changes, ratios)``: the pins decoded (4x, as the card decodes them) into
@@ -12,7 +12,8 @@ the clock after whose edge the word was set, the word: bit 3n axis n's A, 3n + 1
   clock.  A sample belongs to the move the pins were in at its clock (the rises of the golden model's
   moves, ``host.check``); the encoders lag the pins, so it is measured against that move's primitive
   and the one before it, the nearer counting.  Against the pins: the distance from the pins' point
-  after the last STEP rise at or before the sample's clock (the following error, in mm).
+  after the last STEP rise at or before the sample's clock (the following error, in mm), and per axis
+  the largest difference in steps.
 """
 from dataclasses import dataclass
 
@@ -44,13 +45,15 @@ def encoder_samples(changes, ratios, before=0):
 class Measured:
     """``samples`` measured; ``drawing_mm`` (where: ``drawing_where``) the largest distance of a sample
     from the drawing; ``pins_mm`` (at clock ``pins_clock``) the largest from the pins at its clock;
-    ``moves``: [(primitive index, [points in steps])] of the samples, for a preview."""
+    ``moves``: [(primitive index, [points in steps])] of the samples, for a preview; ``pins_steps``: per
+    axis the largest |sample - pins| in steps."""
     samples: int
     drawing_mm: float
     drawing_where: str
     pins_mm: float
     pins_clock: int
     moves: list
+    pins_steps: tuple = ()
 
 
 def _distance(machine, a, b):
@@ -67,6 +70,7 @@ def measure(plan, check, samples, rises, start):
         ends.append((total, primitive))
     moves, rise, move = [], 0, 0
     worst = [0.0, "", 0.0, 0]
+    per_axis = [0.0] * len(start)
     for clock, point in samples:
         while rise < len(rises) and rises[rise][0] <= clock:
             rise += 1
@@ -78,6 +82,7 @@ def measure(plan, check, samples, rises, start):
             distance, where = min((item.distance(machine.mm(point)), item.where) for item in near)
             if distance > worst[0]:
                 worst[:2] = distance, where
+        per_axis = [max(w, abs(a - b)) for w, a, b in zip(per_axis, point, pins)]
         apart = _distance(machine, point, pins)
         if apart > worst[2]:
             worst[2:] = apart, clock
@@ -85,4 +90,4 @@ def measure(plan, check, samples, rises, start):
             moves.append((ends[move][1], []))
         if moves:
             moves[-1][1].append(point)
-    return Measured(len(samples), worst[0], worst[1], worst[2], worst[3], moves)
+    return Measured(len(samples), worst[0], worst[1], worst[2], worst[3], moves, tuple(per_axis))

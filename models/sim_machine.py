@@ -16,10 +16,16 @@ and the MyHDL process (``sim/card/sim_machine.py``) are judged against:
 * ``MachineConfig``: which inputs have a switch, which axes a motor, where the
   axes start, which DIR level moves an axis forward, how the E-stop is wired;
   JSON in and out (``python -m host run --machine FILE``, the card server's
-  ``--machine``).
-* ``SimMachine``: the machine clock by clock.  Each clock (``clocks`` counts
-  them, 1 the first) it takes the card's STEP, DIR and DRIVE_ENABLE pins as
-  they are after a rising edge; a STEP rise moves its axis one step if
+  ``--machine``).  It names axes of any build (X .. C); ``axes`` is the least
+  build it needs.  On a card of more axes the axes it does not name have no
+  switch and no motor, start at 0 and move forward with DIR high
+  (``start`` and ``dir_positive`` may list fewer axes than the card has); a
+  configuration naming an axis the card lacks is refused
+  (``MachineConfig.check_axes``).
+* ``SimMachine``: the machine of a card of ``axes`` axes, clock by clock.
+  Each clock (``clocks`` counts them, 1 the first) it takes the card's STEP
+  and DIR pins of every axis and DRIVE_ENABLE as they are after a rising
+  edge; a STEP rise moves its axis one step if
   DRIVE_ENABLE is high and the axis's motor (if it has one) is not stalled,
   else the step is lost (``lost`` counts them); then each motor's encoder
   follows (``encoder_pins``), every switch reads its axis's position, and
@@ -41,10 +47,12 @@ from models.axes import AXIS_NAMES
 from models.encoder_model import FILTER_RESET
 from models.motor_model import MASK32, MotorModel, xorshift32
 
-INPUTS = regmap.input_names(2)      # the machine has X and Y: the two-axis card's inputs
+INPUTS = regmap.INPUT_NAMES         # the largest build's inputs, bit n of the pins word: a card of N axes
+                                    # has the first len(regmap.input_names(N)) of them
 SWITCH_INPUTS = INPUTS[1:]          # every input but the E-stop can have a switch
 AXIS_OF = {name: AXIS_NAMES.index(name.rsplit("_", 1)[1]) for name in SWITCH_INPUTS}
-MOTOR_AXES = AXIS_NAMES[:2]        # the machine's axes that can have a motor
+MOTOR_AXES = AXIS_NAMES             # every axis can have a motor
+MIN_AXES = 2                        # the smallest build: X and Y
 RATIO_MAX = 1 << 16     # a ratio's numerator and denominator
 LAG_MAX = 1 << 20       # clocks of lag (the compiled harness keeps that many positions)
 SPACING_MAX = 1 << 16   # clocks of spacing, and of jitter
@@ -149,9 +157,10 @@ class Motor:
 class MachineConfig:
     """``switches``: {input name (``SWITCH_INPUTS``): ``Switch``}; ``start``:
     the axes' positions at reset; ``dir_positive``: the DIR pin level that moves
-    each axis forward; ``estop_active_low``: the E-stop pin is 0 while pressed;
-    ``motors``: {axis name (``MOTOR_AXES``): ``Motor``}, on the encoder inputs
-    of a card built with encoders."""
+    each axis forward (both from X on, 2 .. 6 values; the axes after the last
+    given start at 0 and move forward with DIR high); ``estop_active_low``: the
+    E-stop pin is 0 while pressed; ``motors``: {axis name (``MOTOR_AXES``):
+    ``Motor``}, on the encoder inputs of a card built with encoders."""
     switches: dict = field(default_factory=dict)
     start: tuple = (0, 0)
     dir_positive: tuple = (True, True)
@@ -171,8 +180,40 @@ class MachineConfig:
             if not isinstance(motor, Motor):
                 raise ValueError(f"{name}: a Motor, not {motor!r}")
             motor.check(f"motor {name}")
-        if len(self.start) != 2 or len(self.dir_positive) != 2:
-            raise ValueError("start and dir_positive give both axes")
+        for name in ("start", "dir_positive"):
+            if not MIN_AXES <= len(getattr(self, name)) <= len(AXIS_NAMES):
+                raise ValueError(f"{name} gives the axes from X on: {MIN_AXES} .. {len(AXIS_NAMES)} values, "
+                                 f"not {len(getattr(self, name))}")
+        if not all(_whole(value) for value in self.start):
+            raise ValueError(f"start: whole numbers of steps, not {self.start!r}")
+
+    def _needs(self):
+        """[(axis index, what names it)] of everything in the configuration that belongs to an axis."""
+        needs = [(AXIS_OF[name], name) for name in self.switches]
+        needs += [(AXIS_NAMES.index(name), f"motor {name}") for name in self.motors]
+        needs += [(len(self.start) - 1, f"start ({len(self.start)} axes)"),
+                  (len(self.dir_positive) - 1, f"dir_positive ({len(self.dir_positive)} axes)")]
+        return needs
+
+    @property
+    def axes(self):
+        """The fewest axes a card must have for this machine (2 .. 6)."""
+        return max(MIN_AXES, *(axis + 1 for axis, _ in self._needs()))
+
+    def check_axes(self, axes):
+        """ValueError naming what of the configuration belongs to an axis a card of ``axes`` axes lacks."""
+        beyond = [what for axis, what in self._needs() if axis >= axes]
+        if beyond:
+            raise ValueError(f"the machine names axes the card lacks: {', '.join(beyond)}; the card has {axes} "
+                             f"axes ({', '.join(AXIS_NAMES[:axes])}): build it with --axes {self.axes}")
+
+    def start_of(self, axis):
+        """Where ``axis`` starts (0 beyond ``start``)."""
+        return self.start[axis] if axis < len(self.start) else 0
+
+    def forward_level(self, axis):
+        """The DIR level that moves ``axis`` forward (high beyond ``dir_positive``)."""
+        return bool(self.dir_positive[axis]) if axis < len(self.dir_positive) else True
 
     def to_json(self):
         return json.dumps(dict(asdict(self), start=list(self.start), dir_positive=list(self.dir_positive)),
@@ -225,18 +266,25 @@ class _Contact:
 
 
 class SimMachine:
-    """The machine of ``config``, clock by clock (see the module's docstring)."""
+    """The machine of ``config`` on a card of ``axes`` axes (None: the fewest
+    ``config`` needs), clock by clock (see the module's docstring)."""
 
-    def __init__(self, config):
-        self.config = config
-        self.positions = list(config.start)
-        self.lost = [0, 0]
+    def __init__(self, config, axes=None):
+        axes = config.axes if axes is None else axes
+        if not MIN_AXES <= axes <= len(AXIS_NAMES):
+            raise ValueError(f"axes {axes} is not {MIN_AXES}..{len(AXIS_NAMES)}")
+        config.check_axes(axes)
+        self.config, self.axes = config, axes
+        self.inputs = regmap.input_names(axes)
+        self.positions = [config.start_of(axis) for axis in range(axes)]
+        self.lost = [0] * axes
         self.estop = False
         self.clocks = 0
-        self._steps = [False, False]
-        self._stall = [False, False]
-        self.motors = [config.motors[name].model(config.dir_positive[axis]) if name in config.motors else None
-                       for axis, name in enumerate(MOTOR_AXES)]
+        self._steps = [False] * axes
+        self._stall = [False] * axes
+        self._forward = [config.forward_level(axis) for axis in range(axes)]
+        self.motors = [config.motors[name].model(self._forward[axis]) if name in config.motors else None
+                       for axis, name in enumerate(MOTOR_AXES[:axes])]
         self._contacts = {name: _Contact(switch, self.positions[AXIS_OF[name]])
                           for name, switch in config.switches.items()}
 
@@ -245,8 +293,8 @@ class SimMachine:
 
     def stall(self, axis, stalled=True):
         """Stall (or free) the motor of ``axis`` (0: X) from the next clock on."""
-        if self.motors[axis] is None:
-            raise ValueError(f"axis {MOTOR_AXES[axis]} has no motor")
+        if not 0 <= axis < self.axes or self.motors[axis] is None:
+            raise ValueError(f"axis {axis} has no motor")
         self._stall[axis] = bool(stalled)
 
     @property
@@ -275,25 +323,34 @@ class SimMachine:
         """Whether the switch on input ``name`` is closed (its contact, without bounce)."""
         return self._contacts[name].closed
 
-    def clock(self, step_x, dir_x, step_y, dir_y, drive_enable):
-        """One clock: the card's pins after a rising edge; returns ``pins``."""
+    def clock(self, *pins):
+        """One clock: the card's pins after a rising edge, STEP and DIR of each
+        axis from X on, then DRIVE_ENABLE (``clock(step_x, dir_x, step_y, dir_y,
+        drive_enable)`` on two axes); returns ``pins``."""
+        if len(pins) != 2 * self.axes + 1:
+            raise ValueError(f"a clock of a {self.axes}-axis machine takes STEP and DIR of each axis and "
+                             f"DRIVE_ENABLE: {2 * self.axes + 1} pins, not {len(pins)}")
+        drive_enable = pins[-1]
         self.clocks += 1
-        for axis, (step, direction) in enumerate(((step_x, dir_x), (step_y, dir_y))):
-            motor = self.motors[axis]
-            if motor is not None:
-                stall_at = self.config.motors[MOTOR_AXES[axis]].stall_at
-                motor.stalled = self._stall[axis] or (stall_at is not None and self.clocks >= stall_at)
-                steps, lost = motor.steps, motor.lost
-                motor.clock(step, direction, drive_enable)
-                self.positions[axis] += motor.steps - steps
-                self.lost[axis] += motor.lost - lost
-                continue
-            rose = bool(step) and not self._steps[axis]
-            self._steps[axis] = bool(step)
-            if rose and drive_enable:
-                self.positions[axis] += 1 if bool(direction) == self.config.dir_positive[axis] else -1
-            elif rose:
-                self.lost[axis] += 1
+        for axis in range(self.axes):
+            self._clock_axis(axis, pins[2 * axis], pins[2 * axis + 1], drive_enable)
         for name, contact in self._contacts.items():
             contact.clock(self.positions[AXIS_OF[name]])
         return self.pins
+
+    def _clock_axis(self, axis, step, direction, drive_enable):
+        motor = self.motors[axis]
+        if motor is not None:
+            stall_at = self.config.motors[MOTOR_AXES[axis]].stall_at
+            motor.stalled = self._stall[axis] or (stall_at is not None and self.clocks >= stall_at)
+            steps, lost = motor.steps, motor.lost
+            motor.clock(step, direction, drive_enable)
+            self.positions[axis] += motor.steps - steps
+            self.lost[axis] += motor.lost - lost
+            return
+        rose = bool(step) and not self._steps[axis]
+        self._steps[axis] = bool(step)
+        if rose and drive_enable:
+            self.positions[axis] += 1 if bool(direction) == self._forward[axis] else -1
+        elif rose:
+            self.lost[axis] += 1

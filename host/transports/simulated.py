@@ -95,13 +95,11 @@ class SimTransport(Transport):
         return self.session.log
 
     def encoder_changes(self):
-        """The encoder pins the simulated machine's motors drove (Verilator): [(clock, word)] of every
+        """The encoder pins the simulated machine's motors drove (Verilator, MyHDL): [(clock, word)] of every
         change so far (``SimMachine.encoder_pins``'s word, set after the rising edge ``clock``)."""
-        if self.kind != "verilator" or self.machine is None:
-            raise ValueError("the encoder pins are recorded by the Verilator card's simulated machine")
-        clocks, words = self.session._runner.card.model.take_encoder_changes()
-        self._encoder_changes = getattr(self, "_encoder_changes", []) + list(zip(clocks.tolist(), words.tolist()))
-        return list(self._encoder_changes)
+        if self.machine is None:
+            raise ValueError("the encoder pins are recorded by the simulated machine: open the card with one")
+        return self.machine.encoder_changes()
 
     def close(self):
         self.session.close()

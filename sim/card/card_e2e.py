@@ -87,6 +87,7 @@ class CardUnderTest:
         # MyHDL: a card with encoders, and (block, *args): block(clock, reset, pins, *args) drives their pins
         self.encoders, self.pin_driver = ENCODERS.check(encoders), pin_driver
         self.machine = machine   # a SimMachine on the input pins (MyHDL, Icarus; Verilator: in the harness)
+        self.encoder_changes = []   # its motors' encoder word: (clock, word) of each change (MyHDL)
         self.log = ArrayPinLog() if kind == "verilator" else PinLog()
         self.wait = CardWait(signal=kind != "verilator")
         self.samples = []
@@ -116,7 +117,8 @@ class CardUnderTest:
         self.pins = motor
         capture = (pin_capture, (bench.clock, motor, self.log))
         waiter = (card_waiter, (bench.clock, self.wait, bench, self.log))
-        extra = [(machine_process, (bench.clock, motor, self.machine))] if self.machine is not None else []
+        extra = ([(machine_process, (bench.clock, motor, self.machine, self.encoder_changes))]
+                 if self.machine is not None else [])
         if self.pin_driver is not None:
             driver, *more = self.pin_driver
             extra.append((driver, (bench.clock, bench.reset, motor, *more)))

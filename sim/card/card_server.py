@@ -116,8 +116,8 @@ def parse_arguments(argv=None):
     parser.add_argument("--estop", type=int, action="append", default=[], metavar="CLOCK",
                         help="toggle the simulated machine's E-stop at this card clock (repeatable; needs --machine)")
     parser.add_argument("--stall", action="append", default=[], metavar="AXIS@CLOCK",
-                        help="stall the simulated machine's motor of AXIS (X, Y) from this card clock on "
-                             "(repeatable; needs a motor on AXIS in --machine)")
+                        help="stall the simulated machine's motor of AXIS (X, Y, ... of the card) from this card "
+                             "clock on (repeatable; needs a motor on AXIS in --machine)")
     parser.add_argument("--encoder-walk", action="append", default=[], metavar="AXIS@CLOCK:COUNTS",
                         help="walk that axis's encoder by COUNTS counts from that card clock on (repeatable; "
                              "needs --encoders)")
@@ -158,6 +158,11 @@ def parse_arguments(argv=None):
         AXES.check(args.axes)
     except ParameterError as error:
         parser.error(f"--axes {error.problem}")
+    if machine is not None:
+        try:
+            machine.check_axes(args.axes)
+        except ValueError as error:
+            parser.error(f"--machine {args.machine}: {error}")
     if not 0 <= args.free_run <= MAX_FREE_RUN:
         parser.error(f"--free-run must be 0..{MAX_FREE_RUN} clocks, not {args.free_run}")
     if not -MAX_PPM <= args.ppm <= MAX_PPM:

@@ -80,7 +80,9 @@ class CardSession:
             raise ValueError(f"register_bar must be 0 (I/O) or 2 (memory), not {register_bar!r}")
         self.kind = kind
         self.register_bar = register_bar
-        simulated = SimMachine(machine) if machine is not None and kind != "verilator" else None
+        if machine is not None:
+            machine.check_axes(axes)   # before anything is built
+        simulated = SimMachine(machine, axes) if machine is not None and kind != "verilator" else None
         card_options = dict(card_options or {})
         if kind != "verilator":
             card_options["encoders"] = card_options.get("encoders", encoders)
@@ -94,7 +96,8 @@ class CardSession:
         else:
             self._runner = _MyhdlRunner(self.target, options, trace, f"{name}_{kind}")
         self.machine = None if machine is None else MachineHandle(
-            machine, model=self._runner.card.model if kind == "verilator" else None, machine=simulated)
+            machine, model=self._runner.card.model if kind == "verilator" else None, machine=simulated,
+            encoder_changes=self.target.encoder_changes)
         self.host = self._runner.bench.host
         self.bench = self._runner.bench
         self.closed = False

@@ -2,6 +2,7 @@
 decoding of recorded encoder pins, the measure against the drawing and the pins with known offsets,
 the options refused before the card is opened, and (slow set) runs on the Verilator card with motors."""
 import json
+import re
 
 import pytest
 
@@ -61,6 +62,10 @@ def test_measure_gives_the_distance_from_the_pins_and_from_the_drawing(lag_rises
     expected_pins = max(lagged, sum(o * o for o in offset) ** 0.5)   # one of the two is 0 in each case
     assert result.samples == len(rises)
     assert result.pins_mm == pytest.approx(expected_pins / STEPS_PER_MM)
+    # per axis, in steps: each sample against the pins' point after the rise just before it
+    per_axis = tuple(max(abs(rises[max(0, n - lag_rises)][1][axis] + offset[axis] - rises[n][1][axis])
+                         for n in range(len(rises))) for axis in (0, 1))
+    assert result.pins_steps == pytest.approx(per_axis)
     # on the drawing's lines the pins are exact lattice points: the distance is the offset across the line
     across = {(0, 0): 0.0, (0.5, 0): 0.5, (0, -1.5): 1.5}[offset]
     assert result.drawing_mm == pytest.approx(across / STEPS_PER_MM)
@@ -68,9 +73,8 @@ def test_measure_gives_the_distance_from_the_pins_and_from_the_drawing(lag_rises
 
 
 @pytest.mark.parametrize("args, text", [
-    (("--encoders", "--card", "myhdl"), "--encoders runs on --card verilator"),
-    (("--encoders", "--card", "pci"), "--encoders runs on --card verilator"),
-    (("--encoders", "--axes", "3"), "a 2-axis card, not --axes 3"),
+    (("--encoders", "--card", "icarus"), "--encoders runs on --card verilator or myhdl"),
+    (("--encoders", "--card", "pci"), "--encoders runs on --card verilator or myhdl"),
     (("--ferror-limit", "5"), "--ferror-limit needs --encoders"),
     (("--encoders", "--ferror-limit", "-1"), "FERROR_LIMIT is a count"),
     (("--encoders", "--ferror-limit", "x"), "FERROR_LIMIT is a count"),
@@ -87,6 +91,15 @@ def test_a_machine_with_motors_needs_encoders(tmp_path, command):
     (tmp_path / "m.json").write_text(MachineConfig(motors={"X": Motor()}).to_json())
     result = run_host(*command, "--machine", tmp_path / "m.json", timeout=60)
     assert result.returncode == 2 and "its motors need --encoders" in result.stderr and result.stdout == ""
+
+
+@pytest.mark.parametrize("axes", [(), ("--axes", "2")])
+def test_a_machine_with_an_axis_the_card_lacks_is_refused_before_the_card_is_opened(tmp_path, axes):
+    (tmp_path / "m.json").write_text(MachineConfig(motors={"X": Motor(), "Z": Motor()}).to_json())
+    result = run_host("run", EXAMPLES / "part.ngc", "--encoders", "--machine", tmp_path / "m.json", *axes, timeout=60)
+    assert result.returncode == 2 and result.stdout == ""
+    assert "the machine names axes the card lacks: motor Z; the card has 2 axes (X, Y): build it with --axes 3" \
+        in result.stderr
 
 
 SQUARE = "G21 G90\nG1 X5 F1200\nG1 Y4\nG1 X0\nG1 Y0\n"
@@ -125,3 +138,56 @@ def test_a_stalled_motor_stops_the_run_with_the_following_error_and_reports_it(t
     assert result.returncode == 1, result.stderr
     assert "FOLLOWING_ERROR" in figure(result.stdout, "stopped", r"(.*)")[0]
     assert "stop FOLLOWING_ERROR X" in result.stdout
+
+
+# 3-D lines and a helix (one turn about (1, 1) mm, down 0.5 mm), short: a fraction of a second of card time
+HELIX_3D = """G21 G90 G17 G91.1
+G1 X1.5 Y1 Z-0.25 F1200
+G3 X1.5 Y1 Z-0.75 I-0.5 J0
+G1 X0.5 Y0.25 Z0
+G1 X0 Y0 Z-0.25
+M2
+"""
+
+
+def _per_axis(out):
+    return [float(v) for v in re.findall(r"[XYZ] (\d+\.\d+)", figure(out, "per axis", r"(.*)")[0])]
+
+
+def test_a_3d_run_with_encoders_measures_every_axis_and_ends_on_exact_counts(tmp_path):
+    (tmp_path / "helix.ngc").write_text(HELIX_3D)
+    (tmp_path / "m.json").write_text(json.dumps({"motors": {"X": {}, "Y": {"counts_per_step": [5, 2]},
+                                                            "Z": {"counts_per_step": 3, "lag": 300}}}))
+    result = run_host("run", tmp_path / "helix.ngc", "--encoders", "--axes", "3", "--machine", tmp_path / "m.json",
+                      "--steps-per-mm", "40", "--ferror-limit", "60", "--acceleration", "200000", "--rapid", "6000",
+                      "--feed-override", "2000")
+    assert result.returncode == 0, result.stdout + result.stderr
+    out = result.stdout
+    assert re.search(r"^pins end:\s+\(0, 0, -10\) steps", out, re.M), out
+    # -10 Z steps at 3 counts a step; X and Y back at 0
+    assert figure(out, "encoders", r"counts \((-?\d+, -?\d+, -?\d+)\) \(ENC_COUNT\)") == ("0, 0, -30",)
+    assert re.search(r"^counts end: exact: the pins' \(0, 0, -10\) steps x counts per step = \(0, 0, -30\)", out, re.M)
+    assert "stop NONE" in out
+    # every axis's steps come further apart (over 1,000 clocks at these feeds) than its motor's lag and counts
+    # take (X: 4 counts 4 clocks apart, Y 3, Z 300 clocks + 3 counts): the encoders are never more than the
+    # step the pins just made behind them, and they do fall behind
+    per_axis = _per_axis(out)
+    assert len(per_axis) == 3 and all(0 < apart <= 1.0 for apart in per_axis), out
+
+
+@pytest.mark.slow(reason="the MyHDL card with encoders, three axes, through the CLI: about 50,000 clocks, a minute "
+                         "of CPU; the Verilator run above checks the same report by default")
+def test_a_3d_run_with_encoders_on_the_myhdl_card_measures_every_axis(tmp_path):
+    (tmp_path / "short.ngc").write_text("G21 G90 G17 G91.1\nG1 X0.2 Y0.1 Z-0.1 F6000\n"
+                                        "G3 X0.2 Y0.1 Z-0.2 I-0.1 J0\nG1 X0.1 Y0.05 Z-0.05\nM2\n")
+    # no --machine: a motor on every axis of the card, as Motor() has them (4 counts a step)
+    result = run_host("run", tmp_path / "short.ngc", "--card", "myhdl", "--encoders", "--axes", "3",
+                      "--steps-per-mm", "40", "--acceleration", "2000000", "--start-feed", "60000",
+                      "--feed-override", "10000", "--rapid", "600000")
+    assert result.returncode == 0, result.stdout + result.stderr
+    out = result.stdout
+    assert re.search(r"^pins end:\s+\(4, 2, -2\) steps", out, re.M), out
+    assert re.search(r"^counts end: exact: the pins' \(4, 2, -2\) steps x counts per step = \(16, 8, -8\)", out, re.M)
+    assert figure(out, "encoders", r"counts \((-?\d+, -?\d+, -?\d+)\) \(ENC_COUNT\)") == ("16, 8, -8",)
+    per_axis = _per_axis(out)
+    assert len(per_axis) == 3 and all(0 < apart <= 1.0 for apart in per_axis), out

@@ -2,6 +2,7 @@
 definition from the spec, bounce, drives, the configuration's checks."""
 import pytest
 
+from models import registers as regmap
 from models.homing_model import BouncingSwitch
 from models.sim_machine import INPUTS, MachineConfig, SimMachine, Switch, switch_closed
 
@@ -88,3 +89,55 @@ def test_json_round_trip():
     assert MachineConfig.from_json(config.to_json()) == config
     with pytest.raises(ValueError, match="not a machine configuration"):
         MachineConfig.from_json('{"switches": {"HOME_Y": {"place": 3}}}')
+
+
+def test_a_two_axis_configuration_on_a_three_axis_card_leaves_z_bare():
+    """The stated rule (docs/machine.md): axes the configuration does not name have no switch and no
+    motor, start at 0 and move forward with DIR high."""
+    config = MachineConfig.from_json('{"switches": {"HOME_X": {"position": 2}}, "start": [1, -1], '
+                                     '"dir_positive": [false, true]}')
+    machine = SimMachine(config, axes=3)
+    assert machine.inputs == regmap.input_names(3) and machine.positions == [1, -1, 0]
+    machine.clock(True, True, False, False, True, True, True)      # X backwards (DIR low forward), Z forward
+    machine.clock(False, True, False, False, False, True, True)
+    machine.clock(False, True, False, False, True, False, False)   # Z's step with the drives off: lost
+    assert machine.positions == [0, -1, 1] and machine.lost == [0, 0, 1] and machine.encoder_pins == 0
+    assert SimMachine(config).axes == 2 and config.axes == 2
+
+
+@pytest.mark.parametrize("positive", [True, False])
+def test_a_z_limit_closes_where_z_moves_to_and_sets_its_input_bit(positive):
+    name = f"LIMIT_{'POS' if positive else 'NEG'}_Z"
+    machine = SimMachine(MachineConfig(switches={name: Switch(2 if positive else -2, positive=positive)},
+                                       start=(0, 0, 0)), axes=3)
+    words = []
+    for clock in range(12):
+        machine.clock(False, True, False, True, clock % 4 == 0, positive, True)
+        words.append(machine.pins)
+    # Z steps at clocks 0, 4, 8: at 2 (or -2) after the second step, the switch closes
+    bit = 1 << regmap.input_names(3).index(name)
+    assert [w == bit for w in words] == [False] * 4 + [True] * 8 and machine.positions == [0, 0, 3 if positive else -3]
+
+
+def test_the_configuration_says_which_build_it_needs_and_a_smaller_card_refuses_it():
+    config = MachineConfig(switches={"HOME_A": Switch(5)}, start=(0, 0, 4))
+    assert config.axes == 4 and MachineConfig(start=(0, 0, 7)).axes == 3
+    SimMachine(config, axes=6)
+    with pytest.raises(ValueError, match=r"lacks: HOME_A, start \(3 axes\); the card has 2 axes \(X, Y\): "
+                                         r"build it with --axes 4"):
+        SimMachine(config, axes=2)
+    with pytest.raises(ValueError, match="takes STEP and DIR of each axis and DRIVE_ENABLE: 9 pins, not 5"):
+        SimMachine(config).clock(True, True, False, False, True)
+
+
+@pytest.mark.parametrize("bad", [dict(start=(0,) * 7), dict(dir_positive=(True,)), dict(start=(0, 1.5)),
+                                 dict(switches={"HOME_W": Switch(1)})])
+def test_bad_axes_in_a_configuration_are_refused(bad):
+    with pytest.raises(ValueError):
+        MachineConfig(**bad)
+
+
+def test_a_six_axis_json_round_trip():
+    config = MachineConfig(switches={"LIMIT_NEG_C": Switch(-9, positive=False)}, start=(1, 2, 3, 4, 5, 6),
+                           dir_positive=(True, False, True, False, True, False))
+    assert MachineConfig.from_json(config.to_json()) == config and config.axes == 6

@@ -140,9 +140,11 @@ def test_bad_motor_settings_are_refused(bad):
         MachineConfig(motors={"X": Motor(**bad)})
 
 
-def test_a_motor_on_an_axis_the_machine_lacks_is_refused():
-    with pytest.raises(ValueError, match="no motor axis 'Z'"):
-        MachineConfig(motors={"Z": Motor()})
+def test_a_motor_on_no_axis_or_on_an_axis_the_card_lacks_is_refused():
+    with pytest.raises(ValueError, match="no motor axis 'W'"):
+        MachineConfig(motors={"W": Motor()})
+    with pytest.raises(ValueError, match=r"lacks: motor Z; the card has 2 axes \(X, Y\): build it with --axes 3"):
+        SimMachine(MachineConfig(motors={"Z": Motor()}), axes=2)
 
 
 def test_motors_json_round_trip():
@@ -154,3 +156,18 @@ def test_motors_json_round_trip():
         MachineConfig.from_json('{"motors": {"X": {"gear": 3}}}')
     with pytest.raises(ValueError, match="counts_per_step"):
         MachineConfig.from_json('{"motors": {"X": {"counts_per_step": "4"}}}')
+
+
+def test_a_z_motor_drives_the_third_encoders_pins_and_stalls_alone():
+    """On a 3-axis card Z's motor is encoder 2 (bits 6..8 of the word); X and Y have none here."""
+    machine, decoder = SimMachine(MachineConfig(motors={"Z": Motor(counts_per_step=3, spacing=3)}), axes=3), _decoder(3)
+    for clock in range(100):   # 5 steps, then 5 stalled; the counts follow 3 clocks apart
+        if clock == 20:
+            machine.stall(2)
+        machine.clock(False, True, False, True, clock % 4 == 0 and clock < 40, False, True)   # Z backwards
+        assert machine.encoder_pins & 0o77 == 0
+        decoder.clock(*_pins(machine.encoder_pins, 2), 0)
+    assert machine.positions == [0, 0, -5] and machine.lost == [0, 0, 5]
+    assert decoder.signed_count == machine.counts(2) == -15
+    with pytest.raises(ValueError, match="axis 1 has no motor"):
+        machine.stall(1)

@@ -232,11 +232,18 @@ def test_machine_options_are_checked(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine", str(tmp_path / "bad.json")])
     assert "no switch input 'ESTOP'" in capsys.readouterr().err
+    # a machine of three axes on the default two-axis card, refused before anything is built
+    (tmp_path / "z.json").write_text('{"switches": {"LIMIT_POS_Z": {"position": 9}}}')
+    with pytest.raises(SystemExit):
+        main(["--socket", str(tmp_path / "s"), "--log", str(tmp_path / "l"), "--machine", str(tmp_path / "z.json")])
+    assert "the machine names axes the card lacks: LIMIT_POS_Z; the card has 2 axes" in capsys.readouterr().err
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["bad.json", "z.json"]
 
 
 @pytest.mark.parametrize("argv, message", [
     (["--encoders", "--stall", "X@100"], "--machine has no motor on X"),
-    (["--encoders", "--stall", "Z@100"], "--stall must be AXIS@CLOCK"),
+    (["--encoders", "--stall", "Z@100"], "--machine has no motor on Z"),
+    (["--encoders", "--stall", "W@100"], "--stall must be AXIS@CLOCK"),
     (["--encoders", "--stall", "Y@-1"], "--stall must be AXIS@CLOCK"),
     (["--encoders", "--stall", "Y"], "--stall must be AXIS@CLOCK"), ([], "add --encoders")])
 def test_motor_options_are_checked_before_anything_is_written(tmp_path, capsys, argv, message):

@@ -13,6 +13,7 @@ from host.machine_io import MachineStopped
 from host.transports.simulated import SimTransport
 from models import registers as regmap
 from models.sim_machine import INPUTS, MachineConfig, SimMachine, Switch
+from sim.backends.verilator.model import DRIVE_BIT
 
 import pytest
 
@@ -22,6 +23,8 @@ CONFIG = MachineConfig(switches={
     "LIMIT_NEG_X": Switch(-20, positive=False, active_low=True),
     "HOME_Y": Switch(-10, positive=False, hysteresis=2, bounce=16, longest_run=2, seed=3),
 }, start=(0, 5), dir_positive=(True, False))
+
+INPUT_BITS = (1 << len(regmap.input_names(2))) - 1   # the two-axis card's inputs
 
 
 def _replay(edges, changes, presses, last_clock):
@@ -33,18 +36,18 @@ def _replay(edges, changes, presses, last_clock):
         recorded[clock] = word      # the last record of a clock counts (an E-stop press after its edge)
     first = min(recorded)       # the clock the harness started the machine in
     state = next((state for clock, state in reversed(edges) if clock <= first), 0)
-    drive, expected = bool(recorded[first] & 0x80), recorded[first] & 0x7F
+    drive, expected = bool(recorded[first] >> DRIVE_BIT & 1), recorded[first] & INPUT_BITS
     assert machine.pins == expected and not state & 5, "no STEP high when the machine starts"
     for clock in range(first + 1, last_clock + 1):
         state = edge_at.get(clock, state)
         if clock in recorded:
-            drive = bool(recorded[clock] & 0x80)
+            drive = bool(recorded[clock] >> DRIVE_BIT & 1)
         word = machine.clock(state & 1, state & 2, state & 4, state & 8, drive)
         for pressed in presses.get(clock, ()):
             machine.press_estop(pressed)
             word = machine.pins
         if clock in recorded:
-            expected = recorded[clock] & 0x7F
+            expected = recorded[clock] & INPUT_BITS
         if word != expected:
             differences.append((clock, word, expected))
     return machine, differences
@@ -89,7 +92,7 @@ def test_compiled_machine_matches_its_golden_model():
     assert state.lost == (20, 4) and state.positions[0] >= 90 and state.pin("LIMIT_POS_X")
     rises = np.array([r[1:3] for r in transport.pins.rises]).sum(axis=0)
     assert sum(state.lost) + abs(state.positions[0]) + abs(state.positions[1] - 5) <= rises.sum()
-    words = [word & 0x7F for _, word in changes]
+    words = [word & INPUT_BITS for _, word in changes]
     bit = 1 << INPUTS.index("HOME_X")
     assert sum((a ^ b) & bit != 0 for a, b in zip(words, words[1:])) >= 6, "HOME_X bounced at each change"
     assert regmap.INPUT_NAMES[:len(INPUTS)] == INPUTS   # the X/Y machine's inputs are the card's first

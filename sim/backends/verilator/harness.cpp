@@ -170,31 +170,41 @@ int vc_run(void* handle, uint64_t limit, int until_interrupt, uint64_t steps, ui
     return reason;
 }
 
-// The simulated machine: `inputs` (INPUTS port indices, -1 where absent) and
-// the DRIVE_ENABLE port; axes start at start_x, start_y; dir_positive: bit n,
-// the DIR level that moves axis n forward.  Switches are added with
-// vc_machine_switch before; the inputs are driven from now on.
-void vc_machine_start(void* handle, const int* inputs, int drive, int64_t start_x, int64_t start_y,
-                      int dir_positive, int estop_active_low) {
+// The simulated machine of a card of `axes` axes: `input_count` inputs,
+// `inputs` their ports (-1 where absent), `input_axis` the axis of each
+// switch input (input 0 is the E-stop), the DRIVE_ENABLE port; `start` the
+// axes' positions; dir_positive: bit n, the DIR level that moves axis n
+// forward.  Switches and motors are added with vc_machine_switch and
+// vc_machine_motor before; the inputs are driven from now on.  Returns -1 if
+// the counts exceed the harness's room.
+int vc_machine_start(void* handle, int axes, int input_count, const int* inputs, const int* input_axis, int drive,
+                     const int64_t* start, int dir_positive, int estop_active_low) {
     Card* card = static_cast<Card*>(handle);
     Machine& m = card->machine;
-    for (int input = 0; input < INPUTS; ++input) m.inputs[input] = inputs[input];
-    m.drive = drive;
-    m.position[0] = start_x;
-    m.position[1] = start_y;
-    m.dir_positive[0] = dir_positive & 1;
-    m.dir_positive[1] = (dir_positive >> 1) & 1;
-    m.estop_active_low = estop_active_low;
-    for (int input = 1; input < INPUTS; ++input) {
-        Contact& c = m.contacts[input];
-        if (c.present) c.level = c.closed = c.reads_closed(m.position[kInputAxis[input]], false);
+    if (axes < 1 || axes > kMaxAxes || input_count < 1 || input_count > kMaxInputs) return -1;
+    m.axes = axes;
+    m.input_count = input_count;
+    for (int input = 0; input < input_count; ++input) {
+        m.inputs[input] = inputs[input];
+        m.input_axis[input] = input_axis[input];
+        if (input && (input_axis[input] < 0 || input_axis[input] >= axes)) return -1;
     }
-    m.step_before[0] = (card->pin_state >> STEP_X) & 1;
-    m.step_before[1] = (card->pin_state >> STEP_Y) & 1;
+    m.drive = drive;
+    for (int axis = 0; axis < axes; ++axis) {
+        m.position[axis] = start[axis];
+        m.dir_positive[axis] = (dir_positive >> axis) & 1;
+        m.step_before[axis] = (card->pin_state >> (2 * axis)) & 1;
+    }
+    m.estop_active_low = estop_active_low;
+    for (int input = 1; input < input_count; ++input) {
+        Contact& c = m.contacts[input];
+        if (c.present) c.level = c.closed = c.reads_closed(m.position[m.input_axis[input]], false);
+    }
     m.on = true;
     m.pins = m.encoder_pins = ~0u;   // the first words are recorded
     card->drive_inputs(m.drive >= 0 && card->get(m.drive));
     card->drive_encoders();
+    return 0;
 }
 
 // A motor on `axis` (before vc_machine_start): models/sim_machine.py's Motor;
@@ -202,6 +212,7 @@ void vc_machine_start(void* handle, const int* inputs, int drive, int64_t start_
 // stall_at -1: none.
 void vc_machine_motor(void* handle, int axis, int64_t numerator, int64_t denominator, int64_t lag, int64_t spacing,
                       int64_t jitter, uint32_t seed, int64_t index_period, int64_t stall_at, const int* ports) {
+    if (axis < 0 || axis >= kMaxAxes) return;
     Motor& motor = static_cast<Card*>(handle)->machine.motors[axis];
     motor = Motor();
     motor.present = true;
@@ -218,31 +229,31 @@ void vc_machine_motor(void* handle, int axis, int64_t numerator, int64_t denomin
 
 // Stall (or free) the motor of `axis` from the next clock on.
 void vc_machine_stall(void* handle, int axis, int stalled) {
-    static_cast<Card*>(handle)->machine.motors[axis].asked_stall = stalled;
+    if (axis >= 0 && axis < kMaxAxes) static_cast<Card*>(handle)->machine.motors[axis].asked_stall = stalled;
 }
 
-// The motors' counts (2; 0 without a motor), the machine's clocks, the
-// encoder word, the encoder changes recorded.
+// The motors' counts (kMaxAxes; 0 without a motor), the machine's clocks,
+// the encoder word, the encoder changes recorded.
 void vc_machine_encoders(void* handle, int64_t* counts, uint64_t* state) {
     Machine& m = static_cast<Card*>(handle)->machine;
-    counts[0] = m.motors[0].counts;
-    counts[1] = m.motors[1].counts;
+    for (int axis = 0; axis < kMaxAxes; ++axis) counts[axis] = m.motors[axis].counts;
     state[0] = m.clocks;
-    state[1] = m.encoder_pins & 0x3F;
+    state[1] = m.encoder_pins;
     state[2] = m.encoder_clocks.size();
 }
 
 // Move the recorded encoder changes out: (clock, word the next edge takes).
-void vc_machine_take_encoder_changes(void* handle, uint64_t* clocks, uint8_t* words) {
+void vc_machine_take_encoder_changes(void* handle, uint64_t* clocks, uint32_t* words) {
     Machine& m = static_cast<Card*>(handle)->machine;
     std::memcpy(clocks, m.encoder_clocks.data(), m.encoder_clocks.size() * sizeof(uint64_t));
-    std::memcpy(words, m.encoder_words.data(), m.encoder_words.size());
+    std::memcpy(words, m.encoder_words.data(), m.encoder_words.size() * sizeof(uint32_t));
     m.encoder_clocks.clear();
     m.encoder_words.clear();
 }
 
 void vc_machine_switch(void* handle, int input, int64_t position, int positive, int64_t hysteresis,
                        int64_t bounce, int64_t longest_run, int active_low, uint32_t seed) {
+    if (input < 1 || input >= kMaxInputs) return;
     Contact& c = static_cast<Card*>(handle)->machine.contacts[input];
     c.present = true;
     c.position = position;
@@ -262,23 +273,23 @@ void vc_machine_estop(void* handle, int pressed) {
     if (m.on) card->drive_inputs(m.drive >= 0 && card->get(m.drive));
 }
 
-// positions (2), lost steps (2), the input word, the changes recorded.
+// positions (kMaxAxes), lost steps (kMaxAxes), the input word, the changes recorded.
 void vc_machine_state(void* handle, int64_t* position, uint64_t* lost, uint64_t* pins) {
     Machine& m = static_cast<Card*>(handle)->machine;
-    position[0] = m.position[0];
-    position[1] = m.position[1];
-    lost[0] = m.lost[0];
-    lost[1] = m.lost[1];
-    pins[0] = m.pins & 0x7F;
+    for (int axis = 0; axis < kMaxAxes; ++axis) {
+        position[axis] = m.position[axis];
+        lost[axis] = m.lost[axis];
+    }
+    pins[0] = m.pins & ~(1u << kDriveBit);
     pins[1] = m.change_clocks.size();
 }
 
 // Move the recorded changes out: (clock, word the next edge takes | DRIVE_ENABLE
-// as sampled after edge `clock`, bit 7).
-void vc_machine_take_changes(void* handle, uint64_t* clocks, uint8_t* words) {
+// as sampled after edge `clock`, bit kDriveBit).
+void vc_machine_take_changes(void* handle, uint64_t* clocks, uint32_t* words) {
     Machine& m = static_cast<Card*>(handle)->machine;
     std::memcpy(clocks, m.change_clocks.data(), m.change_clocks.size() * sizeof(uint64_t));
-    std::memcpy(words, m.change_pins.data(), m.change_pins.size());
+    std::memcpy(words, m.change_pins.data(), m.change_pins.size() * sizeof(uint32_t));
     m.change_clocks.clear();
     m.change_pins.clear();
 }

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from models.axes import AXIS_NAMES
-from models.sim_machine import INPUTS, MOTOR_AXES
+from models.sim_machine import AXIS_OF, INPUTS, MOTOR_AXES
 from sim.backends.verilator.build import VerilatorError
 
 LINES = ("ad", "cbe", "par", "frame", "irdy", "trdy", "devsel", "stop", "perr", "serr", "inta")
@@ -24,9 +24,12 @@ PINS = tuple(f"{kind}_{name.lower()}" for name in AXIS_NAMES for kind in ("step"
 
 _u64, _int, _p = ctypes.c_uint64, ctypes.c_int, ctypes.c_void_p
 _u64_array = np.ctypeslib.ndpointer(np.uint64, flags="C_CONTIGUOUS")
-_u8_array = np.ctypeslib.ndpointer(np.uint8, flags="C_CONTIGUOUS")
+_u32_array = np.ctypeslib.ndpointer(np.uint32, flags="C_CONTIGUOUS")
 _u16_array = np.ctypeslib.ndpointer(np.uint16, flags="C_CONTIGUOUS")
 _int_array = np.ctypeslib.ndpointer(np.intc, flags="C_CONTIGUOUS")
+_i64_array = np.ctypeslib.ndpointer(np.int64, flags="C_CONTIGUOUS")
+MAX_AXES = len(AXIS_NAMES)   # the harness's room (sim_machine.h's kMaxAxes, kMaxInputs)
+DRIVE_BIT = 31               # DRIVE_ENABLE's bit in a recorded input word (sim_machine.h's kDriveBit)
 _SIGNATURES = {
     "vc_new": (_p, []),
     "vc_free": (None, [_p]),
@@ -50,17 +53,17 @@ _SIGNATURES = {
     "vc_edge_count": (_u64, [_p]),
     "vc_take_edges": (None, [_p, _u64_array, _u16_array]),
     "vc_trace_open": (_int, [_p, ctypes.c_char_p, _u64, _u64, _u64]),
-    "vc_machine_start": (None, [_p, _int_array, _int, ctypes.c_int64, ctypes.c_int64, _int, _int]),
+    "vc_machine_start": (_int, [_p, _int, _int, _int_array, _int_array, _int, _i64_array, _int, _int]),
     "vc_machine_switch": (None, [_p, _int, ctypes.c_int64, _int, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64,
                                  _int, ctypes.c_uint32]),
     "vc_machine_estop": (None, [_p, _int]),
     "vc_machine_state": (None, [_p, ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(_u64), ctypes.POINTER(_u64)]),
-    "vc_machine_take_changes": (None, [_p, _u64_array, _u8_array]),
+    "vc_machine_take_changes": (None, [_p, _u64_array, _u32_array]),
     "vc_machine_motor": (None, [_p, _int, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64, ctypes.c_int64,
                                 ctypes.c_int64, ctypes.c_uint32, ctypes.c_int64, ctypes.c_int64, _int_array]),
     "vc_machine_stall": (None, [_p, _int, _int]),
     "vc_machine_encoders": (None, [_p, ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(_u64)]),
-    "vc_machine_take_encoder_changes": (None, [_p, _u64_array, _u8_array]),
+    "vc_machine_take_encoder_changes": (None, [_p, _u64_array, _u32_array]),
     "vc_trace_close": (None, [_p]),
 }
 _LIBRARIES = {}
@@ -103,6 +106,7 @@ class VerilatedModel:
             output = bool(self._lib.vc_port_direction(self._handle, index))
             self.ports[name] = (index, width, output)
         self.trace_kind = (None, "vcd", "fst")[self._lib.vc_trace_kind()]
+        self.machine_axes = 0   # the simulated machine's axes, once started
 
     # ----- ports --------------------------------------------------------------
     def index(self, name):
@@ -214,12 +218,16 @@ class VerilatedModel:
         return clocks, states
 
     # ----- the simulated machine (models/sim_machine.py) -----------------------
-    def start_machine(self, config, inputs, drive, encoders=None):
+    def start_machine(self, config, axes, inputs, drive, encoders=None):
         """Drive the machine inputs ``inputs`` (port names in ``INPUT_NAMES``
-        order) from ``config`` (a ``MachineConfig``), every clock in the
-        harness, the drives following port ``drive`` (DRIVE_ENABLE); each
-        motor of ``config`` drives ``encoders[axis]`` (the port names of its
-        axis's A, B and index)."""
+        order: those of a card of ``axes`` axes) from ``config`` (a
+        ``MachineConfig``), every clock in the harness, the drives following
+        port ``drive`` (DRIVE_ENABLE); each motor of ``config`` drives
+        ``encoders[axis]`` (the port names of its axis's A, B and index)."""
+        config.check_axes(axes)
+        if not 2 <= axes <= MAX_AXES or not 1 <= len(inputs) <= len(INPUTS):
+            raise VerilatorError(f"a machine of {axes} axes and {len(inputs)} inputs does not fit the harness")
+        self.machine_axes = axes
         for name, motor in config.motors.items():
             axis = MOTOR_AXES.index(name)
             numerator, denominator = motor.ratio
@@ -232,46 +240,58 @@ class VerilatedModel:
                                         switch.hysteresis, switch.bounce, switch.longest_run,
                                         int(switch.active_low), switch.seed)
         ports = np.array([self.input_index(name) for name in inputs], dtype=np.intc)
-        directions = int(config.dir_positive[0]) | int(config.dir_positive[1]) << 1
-        self._lib.vc_machine_start(self._handle, ports, self.index(drive), config.start[0], config.start[1],
-                                   directions, int(config.estop_active_low))
+        input_axis = np.array([AXIS_OF.get(name, -1) for name in INPUTS[:len(inputs)]], dtype=np.intc)
+        start = np.array([config.start_of(axis) for axis in range(axes)], dtype=np.int64)
+        directions = sum(int(config.forward_level(axis)) << axis for axis in range(axes))
+        if self._lib.vc_machine_start(self._handle, axes, len(inputs), ports, input_axis, self.index(drive), start,
+                                      directions, int(config.estop_active_low)) < 0:
+            raise VerilatorError(f"the harness refused a machine of {axes} axes and {len(inputs)} inputs")
 
     def press_estop(self, pressed=True):
         self._lib.vc_machine_estop(self._handle, int(bool(pressed)))
 
-    def machine_state(self):
-        """(positions, lost steps, input word) of the simulated machine."""
-        position, lost, pins = (ctypes.c_int64 * 2)(), (_u64 * 2)(), (_u64 * 2)()
+    def _machine_state(self):
+        position, lost, pins = (ctypes.c_int64 * MAX_AXES)(), (_u64 * MAX_AXES)(), (_u64 * 2)()
         self._lib.vc_machine_state(self._handle, position, lost, pins)
-        return (position[0], position[1]), (lost[0], lost[1]), pins[0]
+        return position, lost, pins
+
+    def machine_state(self):
+        """(positions, lost steps, input word) of the simulated machine, per axis of its card."""
+        position, lost, pins = self._machine_state()
+        axes = self.machine_axes
+        return tuple(position[:axes]), tuple(lost[:axes]), pins[0]
 
     def stall(self, axis, stalled=True):
         """Stall (or free) the motor of ``axis`` from the next clock on."""
         self._lib.vc_machine_stall(self._handle, int(axis), int(bool(stalled)))
 
-    def machine_encoders(self):
-        """(the motors' counts per axis, the machine's clocks, the encoder word)."""
-        counts, state = (ctypes.c_int64 * 2)(), (_u64 * 3)()
+    def _machine_encoders(self):
+        counts, state = (ctypes.c_int64 * MAX_AXES)(), (_u64 * 3)()
         self._lib.vc_machine_encoders(self._handle, counts, state)
-        return (counts[0], counts[1]), state[0], state[1]
+        return counts, state
+
+    def machine_encoders(self):
+        """(the motors' counts per axis of the card, the machine's clocks, the encoder word)."""
+        counts, state = self._machine_encoders()
+        return tuple(counts[:self.machine_axes]), state[0], state[1]
 
     def take_encoder_changes(self):
         """(clocks, words) of the encoder word's changes since the last call
         (``SimMachine.encoder_pins``: set after the rising edge ``clocks``
         counts, taken by the next)."""
-        counts, state = (ctypes.c_int64 * 2)(), (_u64 * 3)()
-        self._lib.vc_machine_encoders(self._handle, counts, state)
-        clocks, words = np.empty(state[2], np.uint64), np.empty(state[2], np.uint8)
+        _, state = self._machine_encoders()
+        clocks, words = np.empty(state[2], np.uint64), np.empty(state[2], np.uint32)
         if state[2]:
             self._lib.vc_machine_take_encoder_changes(self._handle, clocks, words)
         return clocks, words
 
     def take_machine_changes(self):
         """(clocks, words) of the input word's changes since the last call: the
-        word set after the rising edge ``clocks`` counts, taken by the next."""
-        position, lost, pins = (ctypes.c_int64 * 2)(), (_u64 * 2)(), (_u64 * 2)()
-        self._lib.vc_machine_state(self._handle, position, lost, pins)
-        clocks, words = np.empty(pins[1], np.uint64), np.empty(pins[1], np.uint8)
+        word set after the rising edge ``clocks`` counts, taken by the next
+        (bit n: ``INPUTS[n]``), with DRIVE_ENABLE as sampled after that edge
+        at bit ``DRIVE_BIT``."""
+        _, _, pins = self._machine_state()
+        clocks, words = np.empty(pins[1], np.uint64), np.empty(pins[1], np.uint32)
         if pins[1]:
             self._lib.vc_machine_take_changes(self._handle, clocks, words)
         return clocks, words

@@ -8,9 +8,12 @@
 
 namespace {
 
-// The machine inputs, in the order of models/registers.py's INPUT_NAMES.
-enum Input { ESTOP, LIMIT_POS_X, LIMIT_NEG_X, LIMIT_POS_Y, LIMIT_NEG_Y, HOME_X, HOME_Y, INPUTS };
-const int kInputAxis[INPUTS] = {-1, 0, 0, 1, 1, 0, 1};
+// Room for the largest build: models/axes.py's six axes, models/registers.py's
+// INPUT_NAMES (the E-stop, then each axis's limits and home).  A machine uses
+// the card's `axes` and the inputs of its build (vc_machine_start says which).
+const int kMaxAxes = 6;
+const int kMaxInputs = 19;
+const int kDriveBit = 31;   // DRIVE_ENABLE's bit in a recorded input word
 
 // The seeded xorshift32 step of models/sim_machine.py: `state` moves on, its new value returned.
 inline uint32_t xorshift32(uint32_t& state) {
@@ -115,35 +118,43 @@ struct Motor {
     }
 };
 
+// The machine of a card of `axes` axes: input 0 is the E-stop, input n > 0
+// a switch on axis input_axis[n]; encoder word bit 3n: axis n's A, 3n + 1: B,
+// 3n + 2: index.
 struct Machine {
     bool on = false;
-    int inputs[INPUTS] = {-1, -1, -1, -1, -1, -1, -1};
+    int axes = 0, input_count = 0;
+    int inputs[kMaxInputs], input_axis[kMaxInputs];
     int drive = -1;
-    Contact contacts[INPUTS];
-    int64_t position[2] = {0, 0};
-    uint64_t lost[2] = {0, 0};
-    bool dir_positive[2] = {true, true};
+    Contact contacts[kMaxInputs];
+    int64_t position[kMaxAxes] = {};
+    uint64_t lost[kMaxAxes] = {};
+    bool dir_positive[kMaxAxes] = {};
     bool estop = false, estop_active_low = false;
-    bool step_before[2] = {false, false};
-    unsigned pins = 0;
+    bool step_before[kMaxAxes] = {};
+    uint32_t pins = 0;
     std::vector<uint64_t> change_clocks;
-    std::vector<uint8_t> change_pins;
-    Motor motors[2];
+    std::vector<uint32_t> change_pins;
+    Motor motors[kMaxAxes];
     uint64_t clocks = 0;       // clocks since the machine started (1 the first)
-    unsigned encoder_pins = 0; // bit 3n: axis n's A, 3n + 1: B, 3n + 2: index
+    uint32_t encoder_pins = 0;
     std::vector<uint64_t> encoder_clocks;
-    std::vector<uint8_t> encoder_words;
+    std::vector<uint32_t> encoder_words;
 
-    unsigned encoder_word() const {
-        unsigned value = 0;
-        for (int axis = 0; axis < 2; ++axis)
+    Machine() {
+        for (int input = 0; input < kMaxInputs; ++input) inputs[input] = input_axis[input] = -1;
+    }
+
+    uint32_t encoder_word() const {
+        uint32_t value = 0;
+        for (int axis = 0; axis < axes; ++axis)
             if (motors[axis].present) value |= motors[axis].pins() << (3 * axis);
         return value;
     }
 
-    unsigned word() const {
-        unsigned value = estop != estop_active_low ? 1u : 0u;
-        for (int input = 1; input < INPUTS; ++input)
+    uint32_t word() const {
+        uint32_t value = estop != estop_active_low ? 1u : 0u;
+        for (int input = 1; input < input_count; ++input)
             if (contacts[input].present && contacts[input].pin()) value |= 1u << input;
         return value;
     }

@@ -13,7 +13,8 @@ INTA#, STEP rises): run in compiled code there, counted edge by edge by
 import numpy as np
 from myhdl import Signal, block, instance
 
-from models.sim_machine import INPUTS, MOTOR_AXES
+from models import registers as regmap
+from models.axes import AXIS_NAMES
 from rtl.convert import GEN_DIR
 from sim.backends.verilator.build import VerilatorError, build_model
 from sim.backends.verilator.model import LINES, PINS, Stop, VerilatedModel
@@ -53,14 +54,24 @@ class VerilatedCard:
         model.bind_bus(lines, "pci_idsel_in", idsel_bit)
         self.lines = lines
 
+    @property
+    def axes(self):
+        """The card's axes: those whose STEP pin the model has (X, Y, ...)."""
+        return sum(f"pins_step_{name.lower()}" in self.model.ports for name in AXIS_NAMES)
+
     def start_machine(self, config):
         """The simulated machine of ``config`` (``models.sim_machine.MachineConfig``)
-        on the card's input pins (its motors on the encoder inputs of a card built
-        with encoders), run in the compiled clock loop."""
-        encoders = [[f"pins_{pin}_{name.lower()}" for pin in ("enc_a", "enc_b", "enc_index")] for name in MOTOR_AXES]
+        on the input pins of the card's axes (its motors on the encoder inputs
+        of a card built with encoders), run in the compiled clock loop; a
+        configuration naming an axis the card lacks is a ValueError."""
+        axes = self.axes
+        config.check_axes(axes)
+        encoders = [[f"pins_{pin}_{name.lower()}" for pin in ("enc_a", "enc_b", "enc_index")]
+                    for name in AXIS_NAMES[:axes]]
         if config.motors and encoders[0][0] not in self.model.ports:
             raise VerilatorError("the machine's motors drive encoder inputs: the card must be built with encoders")
-        self.model.start_machine(config, [f"pins_{name.lower()}" for name in INPUTS], "pins_drive_enable", encoders)
+        self.model.start_machine(config, axes, [f"pins_{name.lower()}" for name in regmap.input_names(axes)],
+                                 "pins_drive_enable", encoders)
 
     def collect_pins(self, log):
         """Move the edges recorded so far into ``log`` (an ``ArrayPinLog``)."""
