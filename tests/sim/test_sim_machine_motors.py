@@ -135,15 +135,21 @@ def _line(card, *steps):
     card.send(command_words(AxesLineCommand(steps)), f"LINE {steps}")
 
 
+def _z_following_card(transport, feed_rate):
+    """A three-axis card started on ``transport`` with Z's following-error stop set and its drives on."""
+    card = Card(transport)
+    card.configure(steps_per_mm=(200.0,) * 3)
+    encoders.set_following_error(card, 2, Z_SCALE, Z_LIMIT)
+    card.start(interrupts=("ERROR", "DONE"))
+    card.set("FEED_RATE", feed_rate)
+    card.drive(True)
+    return card
+
+
 def test_a_three_axis_machine_matches_its_model_and_a_z_stall_stops_the_card_on_z():
     stalls = {}
     with SimTransport("verilator", machine=CONFIG_3, encoders=1, axes=3) as transport:
-        card = Card(transport)
-        card.configure(steps_per_mm=(200.0,) * 3)
-        encoders.set_following_error(card, 2, Z_SCALE, Z_LIMIT)
-        card.start(interrupts=("ERROR", "DONE"))
-        card.set("FEED_RATE", 4000)
-        card.drive(True)
+        card = _z_following_card(transport, feed_rate=4000)
         for steps in ((20, -9, -30), (-7, 4, 25), (0, 0, -19)):   # Z over its home switch, off it, on again
             _line(card, *steps)
         card.wait_done()
@@ -200,12 +206,7 @@ def test_a_z_limit_switch_of_the_machine_stops_the_card_naming_it():
 def test_the_myhdl_three_axis_card_counts_its_z_motor_and_a_z_stall_stops_it_on_z():
     config = MachineConfig(motors={"Z": Motor(counts_per_step=(3, 2), spacing=3)})
     with SimTransport("myhdl", machine=config, encoders=1, axes=3) as transport:
-        card = Card(transport)
-        card.configure(steps_per_mm=(200.0,) * 3)
-        encoders.set_following_error(card, 2, Z_SCALE, Z_LIMIT)
-        card.start(interrupts=("ERROR", "DONE"))
-        card.set("FEED_RATE", 30000)
-        card.drive(True)
+        card = _z_following_card(transport, feed_rate=30000)
         _line(card, 3, -2, -7)
         card.wait_done()
         transport.sleep(1e-6)
