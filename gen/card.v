@@ -5539,17 +5539,18 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arri
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
+always @(card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
     reg [4-1:0] taken;
     integer index;
     taken = 4'h0;
-    if ((card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched != 0) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard))) begin
-        for (index=4-1; index>=0; index=index-1) begin
-            if (card_core0_regs_fifo1_sequencer1_slots_left[index]) begin
-                taken = 0;
-                taken[index] = 1;
-            end
+    for (index=4-1; index>=0; index=index-1) begin
+        if (card_core0_regs_fifo1_sequencer1_slots_left[index]) begin
+            taken = 0;
+            taken[index] = 1;
         end
+    end
+    if (((!card_core0_regs_fifo1_sequencer1_word_due) || (card_core0_regs_fifo1_sequencer1_fetched == 0) || card_core0_regs_fifo1_sequencer_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
+        taken = 0;
     end
     card_core0_regs_fifo1_sequencer1_slot_taken = taken;
 end

@@ -4042,17 +4042,18 @@ always @(fifo_empty, sequencer0_arriving_has_operands, sequencer0_state, sequenc
 end
 
 
-always @(sequencer0_word_due, sequencer_clear, sequencer0_slots_left, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
+always @(sequencer0_slots_left, sequencer0_word_due, sequencer_clear, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
     reg [4-1:0] taken;
     integer index;
     taken = 4'h0;
-    if ((sequencer0_word_due && (sequencer0_fetched != 0) && (!sequencer_clear) && (!sequencer0_discard))) begin
-        for (index=4-1; index>=0; index=index-1) begin
-            if (sequencer0_slots_left[index]) begin
-                taken = 0;
-                taken[index] = 1;
-            end
+    for (index=4-1; index>=0; index=index-1) begin
+        if (sequencer0_slots_left[index]) begin
+            taken = 0;
+            taken[index] = 1;
         end
+    end
+    if (((!sequencer0_word_due) || (sequencer0_fetched == 0) || sequencer_clear || sequencer0_discard)) begin
+        taken = 0;
     end
     sequencer0_slot_taken = taken;
 end

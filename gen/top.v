@@ -6370,17 +6370,18 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_seq
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
+always @(card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
     reg [4-1:0] taken;
     integer index;
     taken = 4'h0;
-    if ((card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched != 0) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard))) begin
-        for (index=4-1; index>=0; index=index-1) begin
-            if (card1_card_core1_regs_fifo2_sequencer2_slots_left[index]) begin
-                taken = 0;
-                taken[index] = 1;
-            end
+    for (index=4-1; index>=0; index=index-1) begin
+        if (card1_card_core1_regs_fifo2_sequencer2_slots_left[index]) begin
+            taken = 0;
+            taken[index] = 1;
         end
+    end
+    if (((!card1_card_core1_regs_fifo2_sequencer2_word_due) || (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) || card1_card_core1_regs_fifo2_sequencer_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
+        taken = 0;
     end
     card1_card_core1_regs_fifo2_sequencer2_slot_taken = taken;
 end

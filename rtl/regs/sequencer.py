@@ -174,13 +174,15 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     @always_comb
     def operand_routing():
-        # the lowest register left takes an arriving operand word
+        # the lowest register left takes an arriving operand word; the loop runs whatever the
+        # condition, so its variable is assigned in every pass and no tool reads it as a latch
         taken = intbv(0)[slot_count:]
-        if word_due and fetched != 0 and not control.clear and not discard:
-            for index in downrange(slot_count):
-                if slots_left[index]:
-                    taken[:] = 0
-                    taken[index] = 1
+        for index in downrange(slot_count):
+            if slots_left[index]:
+                taken[:] = 0
+                taken[index] = 1
+        if not word_due or fetched == 0 or control.clear or discard:
+            taken[:] = 0
         slot_taken.next = taken
 
     @always_comb
