@@ -912,7 +912,7 @@ reg card_core0_regs_fifo1_sequencer1_arriving_moves;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_slots;
 reg card_core0_regs_fifo1_sequencer1_arriving_known;
-reg card_core0_regs_fifo1_sequencer1_arriving_reserved;
+wire card_core0_regs_fifo1_sequencer1_arriving_reserved;
 reg card_core0_regs_fifo1_sequencer1_arriving_out_of_range;
 reg card_core0_regs_fifo1_sequencer1_dda_start;
 reg card_core0_regs_fifo1_sequencer1_dda_done;
@@ -930,13 +930,32 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ys;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xe;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
-reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_high;
-reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_low;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
 reg card_core0_regs_fifo1_sequencer1_command_header1_has_axes;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_lead_count;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_ones;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_zero_count;
+wire [6:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag;
+wire [3:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_flag;
+wire [11:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_flag;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_flag;
+wire [2:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_flag;
+wire [5:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_flag;
+wire [1:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag;
+wire [3:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
 wire card_core0_regs_fifo1_feed_rate1_advancing;
@@ -1315,6 +1334,44 @@ assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
 assign card_core0_regs_fifo1_requested[0] = card_core0_regs_fifo1_requests_step_x;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[6] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[5] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[4] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[3] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[2] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[1] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[0] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[3] = card_core0_regs_fifo1_fifo_dout[0];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[2] = card_core0_regs_fifo1_fifo_dout[1];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[1] = card_core0_regs_fifo1_fifo_dout[2];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[0] = card_core0_regs_fifo1_fifo_dout[3];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[11] = card_core0_regs_fifo1_fifo_dout[4];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[10] = card_core0_regs_fifo1_fifo_dout[5];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[9] = card_core0_regs_fifo1_fifo_dout[6];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[8] = card_core0_regs_fifo1_fifo_dout[7];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[7] = card_core0_regs_fifo1_fifo_dout[8];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[6] = card_core0_regs_fifo1_fifo_dout[9];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[5] = card_core0_regs_fifo1_fifo_dout[10];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[4] = card_core0_regs_fifo1_fifo_dout[11];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[3] = card_core0_regs_fifo1_fifo_dout[12];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[2] = card_core0_regs_fifo1_fifo_dout[13];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[1] = card_core0_regs_fifo1_fifo_dout[14];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[0] = card_core0_regs_fifo1_fifo_dout[15];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members[2] = card_core0_regs_fifo1_fifo_dout[17];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members[1] = card_core0_regs_fifo1_fifo_dout[18];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members[0] = card_core0_regs_fifo1_fifo_dout[19];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[5] = card_core0_regs_fifo1_fifo_dout[20];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[4] = card_core0_regs_fifo1_fifo_dout[21];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[3] = card_core0_regs_fifo1_fifo_dout[22];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[2] = card_core0_regs_fifo1_fifo_dout[23];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[1] = card_core0_regs_fifo1_fifo_dout[24];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[0] = card_core0_regs_fifo1_fifo_dout[25];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members[1] = card_core0_regs_fifo1_fifo_dout[26];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members[0] = card_core0_regs_fifo1_fifo_dout[27];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[3] = card_core0_regs_fifo1_fifo_dout[28];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[2] = card_core0_regs_fifo1_fifo_dout[29];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[1] = card_core0_regs_fifo1_fifo_dout[30];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[0] = card_core0_regs_fifo1_fifo_dout[31];
 assign card_core0_regs_fifo1_pulse_out1_levels[1] = card_core0_regs_fifo1_pulse_out1_axis_y_level;
 assign card_core0_regs_fifo1_pulse_out1_levels[0] = card_core0_regs_fifo1_pulse_out1_axis_x_level;
 assign card_core0_regs_fifo1_pulse_out1_pulses[1] = card_core0_regs_fifo1_pulse_out1_axis_y_pulse;
@@ -5096,7 +5153,7 @@ assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_
 assign card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup8_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
@@ -5118,7 +5175,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup9_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 2;
@@ -5140,7 +5197,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
@@ -5162,7 +5219,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 1;
@@ -5184,7 +5241,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
@@ -5206,7 +5263,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_moves = 1;
@@ -5228,7 +5285,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup16_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
@@ -5250,51 +5307,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup17_look_up
-    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62449;
-        2: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62463;
-        3: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62448;
-        4: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
-        5: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
-        6: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
-        7: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        8: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        9: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        10: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        11: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        12: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        13: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        14: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        default: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-    endcase
-end
-
-
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup18_look_up
-    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        2: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 65535;
-        3: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        4: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 15;
-        5: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        6: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 65535;
-        7: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        8: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        9: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        10: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        11: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        12: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        13: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        14: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        default: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-    endcase
-end
-
-
-always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup19_look_up
+always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
     case (card_core0_regs_fifo1_fifo_dout[26-1:20])
         0: card_core0_regs_fifo1_sequencer1_command_header1_ones = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
@@ -5364,7 +5377,7 @@ always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_command_header1_has_axes, card_core0_regs_fifo1_sequencer1_command_header1_ones, card_core0_regs_fifo1_sequencer1_command_header1_allowed_high, card_core0_regs_fifo1_sequencer1_command_header1_allowed_low, card_core0_regs_fifo1_sequencer1_command_header1_lead_count, card_core0_regs_fifo1_sequencer1_command_header1_fixed_count) begin: card_core0_regs_fifo1_sequencer1_command_header1_frame
+always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_command_header1_has_axes, card_core0_regs_fifo1_sequencer1_command_header1_ones, card_core0_regs_fifo1_sequencer1_command_header1_lead_count, card_core0_regs_fifo1_sequencer1_command_header1_fixed_count) begin: card_core0_regs_fifo1_sequencer1_command_header1_frame
     card_core0_regs_fifo1_sequencer1_arriving_operands = card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
     if (card_core0_regs_fifo1_sequencer1_command_header1_has_axes) begin
         if ((card_core0_regs_fifo1_fifo_dout[26-1:20] == 0)) begin
@@ -5374,7 +5387,6 @@ always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0
             card_core0_regs_fifo1_sequencer1_arriving_operands = ((card_core0_regs_fifo1_sequencer1_command_header1_fixed_count + card_core0_regs_fifo1_sequencer1_command_header1_lead_count) + card_core0_regs_fifo1_sequencer1_command_header1_ones);
         end
     end
-    card_core0_regs_fifo1_sequencer1_arriving_reserved = (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_command_header1_allowed_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_command_header1_allowed_low)) != 0));
 end
 
 
@@ -5403,6 +5415,192 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
         end
     end
 end
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing && (card_core0_regs_fifo1_fifo_dout[16] != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members != 0));
+
+
+
+assign card_core0_regs_fifo1_sequencer1_arriving_reserved = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag != 0);
 
 
 always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register4_hold

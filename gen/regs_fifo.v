@@ -821,17 +821,36 @@ reg sequencer0_arriving_moves;
 reg [3:0] sequencer0_arriving_operands;
 reg [3:0] sequencer0_arriving_slots;
 reg sequencer0_arriving_known;
-reg sequencer0_arriving_reserved;
+wire sequencer0_arriving_reserved;
 reg sequencer0_arriving_out_of_range;
 reg sequencer0_mark_strobe;
 reg [15:0] sequencer0_mark_tag;
-reg [15:0] sequencer0_command_header0_allowed_high;
-reg [15:0] sequencer0_command_header0_allowed_low;
 reg [3:0] sequencer0_command_header0_fixed_count;
 reg sequencer0_command_header0_has_axes;
 reg [3:0] sequencer0_command_header0_lead_count;
 reg [3:0] sequencer0_command_header0_ones;
 reg [3:0] sequencer0_command_header0_zero_count;
+wire [6:0] sequencer0_command_header0__reserved_bits0_any_flag;
+wire sequencer0_command_header0__reserved_bits0__reserved_class0_flag;
+wire [3:0] sequencer0_command_header0__reserved_bits0__reserved_class0_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class0_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class1_flag;
+wire [11:0] sequencer0_command_header0__reserved_bits0__reserved_class1_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class1_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class2_flag;
+reg sequencer0_command_header0__reserved_bits0__reserved_class2_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class3_flag;
+wire [2:0] sequencer0_command_header0__reserved_bits0__reserved_class3_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class3_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class4_flag;
+wire [5:0] sequencer0_command_header0__reserved_bits0__reserved_class4_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class4_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class5_flag;
+wire [1:0] sequencer0_command_header0__reserved_bits0__reserved_class5_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class5_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class6_flag;
+wire [3:0] sequencer0_command_header0__reserved_bits0__reserved_class6_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class6_refusing;
 wire feed_rate0_above;
 wire feed_rate0_above_floor;
 wire feed_rate0_advancing;
@@ -1039,6 +1058,44 @@ assign direct_busy[1] = direct_pulse1_command_busy;
 assign direct_busy[0] = direct_pulse0_command_busy;
 assign requested[1] = requests_step_y;
 assign requested[0] = requests_step_x;
+assign sequencer0_command_header0__reserved_bits0_any_flag[6] = sequencer0_command_header0__reserved_bits0__reserved_class0_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[5] = sequencer0_command_header0__reserved_bits0__reserved_class1_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[4] = sequencer0_command_header0__reserved_bits0__reserved_class2_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[3] = sequencer0_command_header0__reserved_bits0__reserved_class3_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[2] = sequencer0_command_header0__reserved_bits0__reserved_class4_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[1] = sequencer0_command_header0__reserved_bits0__reserved_class5_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[0] = sequencer0_command_header0__reserved_bits0__reserved_class6_flag;
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[3] = fifo_dout[0];
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[2] = fifo_dout[1];
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[1] = fifo_dout[2];
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[0] = fifo_dout[3];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[11] = fifo_dout[4];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[10] = fifo_dout[5];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[9] = fifo_dout[6];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[8] = fifo_dout[7];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[7] = fifo_dout[8];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[6] = fifo_dout[9];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[5] = fifo_dout[10];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[4] = fifo_dout[11];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[3] = fifo_dout[12];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[2] = fifo_dout[13];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[1] = fifo_dout[14];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[0] = fifo_dout[15];
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_members[2] = fifo_dout[17];
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_members[1] = fifo_dout[18];
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_members[0] = fifo_dout[19];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[5] = fifo_dout[20];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[4] = fifo_dout[21];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[3] = fifo_dout[22];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[2] = fifo_dout[23];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[1] = fifo_dout[24];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[0] = fifo_dout[25];
+assign sequencer0_command_header0__reserved_bits0__reserved_class5_members[1] = fifo_dout[26];
+assign sequencer0_command_header0__reserved_bits0__reserved_class5_members[0] = fifo_dout[27];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[3] = fifo_dout[28];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[2] = fifo_dout[29];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[1] = fifo_dout[30];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[0] = fifo_dout[31];
 assign pulse_out0_levels[1] = pulse_out0_axis_y_level;
 assign pulse_out0_levels[0] = pulse_out0_axis_x_level;
 assign pulse_out0_pulses[1] = pulse_out0_axis_y_pulse;
@@ -3753,51 +3810,7 @@ always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup6_look_up
 end
 
 
-always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup7_look_up
-    case (fifo_dout[32-1:28])
-        0: sequencer0_command_header0_allowed_high = 0;
-        1: sequencer0_command_header0_allowed_high = 62449;
-        2: sequencer0_command_header0_allowed_high = 62463;
-        3: sequencer0_command_header0_allowed_high = 62448;
-        4: sequencer0_command_header0_allowed_high = 61440;
-        5: sequencer0_command_header0_allowed_high = 61440;
-        6: sequencer0_command_header0_allowed_high = 61440;
-        7: sequencer0_command_header0_allowed_high = 0;
-        8: sequencer0_command_header0_allowed_high = 0;
-        9: sequencer0_command_header0_allowed_high = 0;
-        10: sequencer0_command_header0_allowed_high = 0;
-        11: sequencer0_command_header0_allowed_high = 0;
-        12: sequencer0_command_header0_allowed_high = 0;
-        13: sequencer0_command_header0_allowed_high = 0;
-        14: sequencer0_command_header0_allowed_high = 0;
-        default: sequencer0_command_header0_allowed_high = 0;
-    endcase
-end
-
-
-always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup8_look_up
-    case (fifo_dout[32-1:28])
-        0: sequencer0_command_header0_allowed_low = 0;
-        1: sequencer0_command_header0_allowed_low = 0;
-        2: sequencer0_command_header0_allowed_low = 65535;
-        3: sequencer0_command_header0_allowed_low = 0;
-        4: sequencer0_command_header0_allowed_low = 15;
-        5: sequencer0_command_header0_allowed_low = 0;
-        6: sequencer0_command_header0_allowed_low = 65535;
-        7: sequencer0_command_header0_allowed_low = 0;
-        8: sequencer0_command_header0_allowed_low = 0;
-        9: sequencer0_command_header0_allowed_low = 0;
-        10: sequencer0_command_header0_allowed_low = 0;
-        11: sequencer0_command_header0_allowed_low = 0;
-        12: sequencer0_command_header0_allowed_low = 0;
-        13: sequencer0_command_header0_allowed_low = 0;
-        14: sequencer0_command_header0_allowed_low = 0;
-        default: sequencer0_command_header0_allowed_low = 0;
-    endcase
-end
-
-
-always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup9_look_up
+always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup7_look_up
     case (fifo_dout[26-1:20])
         0: sequencer0_command_header0_ones = 0;
         1: sequencer0_command_header0_ones = 1;
@@ -3867,7 +3880,7 @@ always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup9_look_up
 end
 
 
-always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_header0_has_axes, sequencer0_command_header0_ones, sequencer0_command_header0_allowed_high, sequencer0_command_header0_allowed_low, sequencer0_command_header0_lead_count, sequencer0_command_header0_fixed_count) begin: sequencer0_command_header0_frame
+always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_header0_has_axes, sequencer0_command_header0_ones, sequencer0_command_header0_lead_count, sequencer0_command_header0_fixed_count) begin: sequencer0_command_header0_frame
     sequencer0_arriving_operands = sequencer0_command_header0_fixed_count;
     if (sequencer0_command_header0_has_axes) begin
         if ((fifo_dout[26-1:20] == 0)) begin
@@ -3877,7 +3890,6 @@ always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_he
             sequencer0_arriving_operands = ((sequencer0_command_header0_fixed_count + sequencer0_command_header0_lead_count) + sequencer0_command_header0_ones);
         end
     end
-    sequencer0_arriving_reserved = (((fifo_dout[32-1:16] & (~sequencer0_command_header0_allowed_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_command_header0_allowed_low)) != 0));
 end
 
 
@@ -3906,6 +3918,192 @@ always @(fifo_dout) begin: sequencer0_command_header0_slots
         end
     end
 end
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class0_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 0;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 0;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_flag = (sequencer0_command_header0__reserved_bits0__reserved_class0_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class0_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class1_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 0;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_flag = (sequencer0_command_header0__reserved_bits0__reserved_class1_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class1_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class2_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 0;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class2_flag = (sequencer0_command_header0__reserved_bits0__reserved_class2_refusing && (fifo_dout[16] != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class3_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_flag = (sequencer0_command_header0__reserved_bits0__reserved_class3_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class3_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class4_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 0;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 0;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_flag = (sequencer0_command_header0__reserved_bits0__reserved_class4_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class4_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class5_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class5_flag = (sequencer0_command_header0__reserved_bits0__reserved_class5_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class5_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class6_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_flag = (sequencer0_command_header0__reserved_bits0__reserved_class6_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class6_members != 0));
+
+
+
+assign sequencer0_arriving_reserved = (sequencer0_command_header0__reserved_bits0_any_flag != 0);
 
 
 always @(posedge clock) begin: sequencer0_operand_register0_hold

@@ -935,7 +935,7 @@ reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_known;
-reg card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
+wire card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
@@ -953,13 +953,32 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
-reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high;
-reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
 reg card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_ones;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count;
+wire [6:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag;
+wire [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_flag;
+wire [11:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_flag;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_flag;
+wire [2:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_flag;
+wire [5:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_flag;
+wire [1:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag;
+wire [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
 wire card1_card_core1_regs_fifo2_feed_rate2_advancing;
@@ -1380,6 +1399,44 @@ assign card1_card_core1_regs_fifo2_direct_busy[1] = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_direct_busy[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
 assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[6] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[5] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[4] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[3] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[2] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[1] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[0] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[3] = card1_card_core1_regs_fifo2_fifo_dout[0];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[2] = card1_card_core1_regs_fifo2_fifo_dout[1];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[1] = card1_card_core1_regs_fifo2_fifo_dout[2];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[0] = card1_card_core1_regs_fifo2_fifo_dout[3];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[11] = card1_card_core1_regs_fifo2_fifo_dout[4];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[10] = card1_card_core1_regs_fifo2_fifo_dout[5];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[9] = card1_card_core1_regs_fifo2_fifo_dout[6];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[8] = card1_card_core1_regs_fifo2_fifo_dout[7];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[7] = card1_card_core1_regs_fifo2_fifo_dout[8];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[6] = card1_card_core1_regs_fifo2_fifo_dout[9];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[5] = card1_card_core1_regs_fifo2_fifo_dout[10];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[4] = card1_card_core1_regs_fifo2_fifo_dout[11];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[3] = card1_card_core1_regs_fifo2_fifo_dout[12];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[2] = card1_card_core1_regs_fifo2_fifo_dout[13];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[1] = card1_card_core1_regs_fifo2_fifo_dout[14];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[0] = card1_card_core1_regs_fifo2_fifo_dout[15];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members[2] = card1_card_core1_regs_fifo2_fifo_dout[17];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members[1] = card1_card_core1_regs_fifo2_fifo_dout[18];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members[0] = card1_card_core1_regs_fifo2_fifo_dout[19];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[5] = card1_card_core1_regs_fifo2_fifo_dout[20];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[4] = card1_card_core1_regs_fifo2_fifo_dout[21];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[3] = card1_card_core1_regs_fifo2_fifo_dout[22];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[2] = card1_card_core1_regs_fifo2_fifo_dout[23];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[1] = card1_card_core1_regs_fifo2_fifo_dout[24];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[0] = card1_card_core1_regs_fifo2_fifo_dout[25];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members[1] = card1_card_core1_regs_fifo2_fifo_dout[26];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members[0] = card1_card_core1_regs_fifo2_fifo_dout[27];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[3] = card1_card_core1_regs_fifo2_fifo_dout[28];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[2] = card1_card_core1_regs_fifo2_fifo_dout[29];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[1] = card1_card_core1_regs_fifo2_fifo_dout[30];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[0] = card1_card_core1_regs_fifo2_fifo_dout[31];
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[0] = card1_card_core1_regs_fifo2_pulse_out2_axis_x_level;
 assign card1_card_core1_regs_fifo2_pulse_out2_pulses[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse;
@@ -5927,7 +5984,7 @@ assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup16_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
@@ -5949,7 +6006,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup17_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 2;
@@ -5971,7 +6028,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup18_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
@@ -5993,7 +6050,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup19_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 1;
@@ -6015,7 +6072,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup24_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
@@ -6037,7 +6094,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup25_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 1;
@@ -6059,7 +6116,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup26_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
@@ -6081,51 +6138,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup27_look_up
-    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62449;
-        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62463;
-        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62448;
-        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
-        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
-        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
-        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-    endcase
-end
-
-
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup28_look_up
-    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 65535;
-        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 15;
-        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 65535;
-        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-    endcase
-end
-
-
-always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup29_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[26-1:20])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
@@ -6195,7 +6208,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes, card1_card_core1_regs_fifo2_sequencer2_command_header2_ones, card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high, card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low, card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count, card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_frame
+always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes, card1_card_core1_regs_fifo2_sequencer2_command_header2_ones, card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count, card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_frame
     card1_card_core1_regs_fifo2_sequencer2_arriving_operands = card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
     if (card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes) begin
         if ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] == 0)) begin
@@ -6205,7 +6218,6 @@ always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card
             card1_card_core1_regs_fifo2_sequencer2_arriving_operands = ((card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count + card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count) + card1_card_core1_regs_fifo2_sequencer2_command_header2_ones);
         end
     end
-    card1_card_core1_regs_fifo2_sequencer2_arriving_reserved = (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low)) != 0));
 end
 
 
@@ -6234,6 +6246,192 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
         end
     end
 end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing && (card1_card_core1_regs_fifo2_fifo_dout[16] != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members != 0));
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_arriving_reserved = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag != 0);
 
 
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register8_hold
