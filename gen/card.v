@@ -428,11 +428,15 @@ wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown;
+wire card_core0_regs_fifo1_reg_word49_in_block_read;
+wire card_core0_regs_fifo1_reg_word49_in_block_write;
 wire card_core0_regs_fifo1_reg_word49_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown;
+wire card_core0_regs_fifo1_reg_word50_in_block_read;
+wire card_core0_regs_fifo1_reg_word50_in_block_write;
 wire card_core0_regs_fifo1_reg_word50_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
@@ -3040,7 +3044,7 @@ assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256));
+assign card_core0_regs_fifo1_reg_word49_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (card_core0_regs_fifo1_reg_word49_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 0)));
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -3062,7 +3066,7 @@ assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (pci_slave1_pci_requests1_local_addr == 320));
+assign card_core0_regs_fifo1_reg_word50_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (card_core0_regs_fifo1_reg_word50_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 0)));
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -3779,7 +3783,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (pci_slave1_pci_requests1_local_addr == 260));
+assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (card_core0_regs_fifo1_reg_word49_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 4)));
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3797,7 +3801,7 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
+assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_reg_word49_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 4)));
 
 
 
@@ -3888,7 +3892,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (pci_slave1_pci_requests1_local_addr == 324));
+assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (card_core0_regs_fifo1_reg_word50_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 4)));
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3906,7 +3910,7 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
+assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_reg_word50_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 4)));
 
 
 
@@ -3997,7 +4001,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (pci_slave1_pci_requests1_local_addr == 264));
+assign card_core0_regs_fifo1_reg_word60_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (card_core0_regs_fifo1_reg_word49_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 8)));
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -4015,7 +4019,7 @@ assign card_core0_regs_fifo1_reg_word60_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_written_addr == 264));
+assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_reg_word49_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 8)));
 
 
 
@@ -4067,7 +4071,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (pci_slave1_pci_requests1_local_addr == 328));
+assign card_core0_regs_fifo1_reg_word61_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (card_core0_regs_fifo1_reg_word50_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 8)));
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -4085,7 +4089,7 @@ assign card_core0_regs_fifo1_reg_word61_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_written_addr == 328));
+assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_reg_word50_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 8)));
 
 
 
@@ -5143,6 +5147,16 @@ assign card_core0_regs_fifo1_reg_word81_shown_wide = {25'h0, card_core0_regs_fif
 
 
 assign card_core0_regs_fifo1_reg_word81_chain_out_clamped = card_core0_regs_fifo1_reg_word80_chain_out_clamped;
+
+
+
+assign card_core0_regs_fifo1_reg_word49_in_block_read = (pci_slave1_pci_requests1_local_addr[12-1:6] == 4);
+assign card_core0_regs_fifo1_reg_word49_in_block_write = (card_core0_regs_fifo1_written_addr[12-1:6] == 4);
+
+
+
+assign card_core0_regs_fifo1_reg_word50_in_block_read = (pci_slave1_pci_requests1_local_addr[12-1:6] == 5);
+assign card_core0_regs_fifo1_reg_word50_in_block_write = (card_core0_regs_fifo1_written_addr[12-1:6] == 5);
 
 
 

@@ -337,11 +337,15 @@ wire [31:0] reg_word7_shown_wide;
 reg [31:0] reg_word7_chain_out_data;
 wire reg_word7_chain_out_clamped;
 wire [31:0] reg_word8_shown;
+wire reg_word8_in_block_read;
+wire reg_word8_in_block_write;
 wire reg_word8_mine;
 wire [31:0] reg_word8_shown_wide;
 reg [31:0] reg_word8_chain_out_data;
 wire reg_word8_chain_out_clamped;
 wire [31:0] reg_word9_shown;
+wire reg_word9_in_block_read;
+wire reg_word9_in_block_write;
 wire reg_word9_mine;
 wire [31:0] reg_word9_shown_wide;
 reg [31:0] reg_word9_chain_out_data;
@@ -1543,7 +1547,7 @@ assign reg_word7_chain_out_clamped = reg_word6_chain_out_clamped;
 
 
 
-assign reg_word8_mine = ((local_addr == 32) || (local_addr == 256));
+assign reg_word8_mine = ((local_addr == 32) || (reg_word8_in_block_read && (local_addr[6-1:0] == 0)));
 
 
 always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_chain_out_data) begin: reg_word8_read_chain
@@ -1565,7 +1569,7 @@ assign reg_word8_chain_out_clamped = reg_word7_chain_out_clamped;
 
 
 
-assign reg_word9_mine = ((local_addr == 36) || (local_addr == 320));
+assign reg_word9_mine = ((local_addr == 36) || (reg_word9_in_block_read && (local_addr[6-1:0] == 0)));
 
 
 always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_chain_out_data) begin: reg_word9_read_chain
@@ -2282,7 +2286,7 @@ end
 
 
 
-assign reg_word17_mine = ((local_addr == 68) || (local_addr == 260));
+assign reg_word17_mine = ((local_addr == 68) || (reg_word8_in_block_read && (local_addr[6-1:0] == 4)));
 
 
 always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_chain_out_data) begin: reg_word17_read_chain
@@ -2300,7 +2304,7 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 
 
 
-assign reg_word17_mine_write = ((written_addr == 68) || (written_addr == 260));
+assign reg_word17_mine_write = ((written_addr == 68) || (reg_word8_in_block_write && (written_addr[6-1:0] == 4)));
 
 
 
@@ -2391,7 +2395,7 @@ end
 
 
 
-assign reg_word18_mine = ((local_addr == 72) || (local_addr == 324));
+assign reg_word18_mine = ((local_addr == 72) || (reg_word9_in_block_read && (local_addr[6-1:0] == 4)));
 
 
 always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_chain_out_data) begin: reg_word18_read_chain
@@ -2409,7 +2413,7 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 
 
 
-assign reg_word18_mine_write = ((written_addr == 72) || (written_addr == 324));
+assign reg_word18_mine_write = ((written_addr == 72) || (reg_word9_in_block_write && (written_addr[6-1:0] == 4)));
 
 
 
@@ -2500,7 +2504,7 @@ end
 
 
 
-assign reg_word19_mine = ((local_addr == 76) || (local_addr == 264));
+assign reg_word19_mine = ((local_addr == 76) || (reg_word8_in_block_read && (local_addr[6-1:0] == 8)));
 
 
 always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_chain_out_data) begin: reg_word19_read_chain
@@ -2518,7 +2522,7 @@ assign reg_word19_shown_wide = {8'h0, reg_word19_shown};
 
 
 
-assign reg_word19_mine_write = ((written_addr == 76) || (written_addr == 264));
+assign reg_word19_mine_write = ((written_addr == 76) || (reg_word8_in_block_write && (written_addr[6-1:0] == 8)));
 
 
 
@@ -2570,7 +2574,7 @@ end
 
 
 
-assign reg_word20_mine = ((local_addr == 80) || (local_addr == 328));
+assign reg_word20_mine = ((local_addr == 80) || (reg_word9_in_block_read && (local_addr[6-1:0] == 8)));
 
 
 always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_chain_out_data) begin: reg_word20_read_chain
@@ -2588,7 +2592,7 @@ assign reg_word20_shown_wide = {8'h0, reg_word20_shown};
 
 
 
-assign reg_word20_mine_write = ((written_addr == 80) || (written_addr == 328));
+assign reg_word20_mine_write = ((written_addr == 80) || (reg_word9_in_block_write && (written_addr[6-1:0] == 8)));
 
 
 
@@ -3646,6 +3650,16 @@ assign reg_word40_shown_wide = {25'h0, reg_word40_shown};
 
 
 assign reg_word40_chain_out_clamped = reg_word39_chain_out_clamped;
+
+
+
+assign reg_word8_in_block_read = (local_addr[16-1:6] == 4);
+assign reg_word8_in_block_write = (written_addr[16-1:6] == 4);
+
+
+
+assign reg_word9_in_block_read = (local_addr[16-1:6] == 5);
+assign reg_word9_in_block_write = (written_addr[16-1:6] == 5);
 
 
 

@@ -451,11 +451,15 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown;
+wire card1_card_core1_regs_fifo2_reg_word90_in_block_read;
+wire card1_card_core1_regs_fifo2_reg_word90_in_block_write;
 wire card1_card_core1_regs_fifo2_reg_word90_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown;
+wire card1_card_core1_regs_fifo2_reg_word91_in_block_read;
+wire card1_card_core1_regs_fifo2_reg_word91_in_block_write;
 wire card1_card_core1_regs_fifo2_reg_word91_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
@@ -3871,7 +3875,7 @@ assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256));
+assign card1_card_core1_regs_fifo2_reg_word90_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_card_core1_regs_fifo2_reg_word90_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 0)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3893,7 +3897,7 @@ assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_pci_slave2_pci_requests2_local_addr == 320));
+assign card1_card_core1_regs_fifo2_reg_word91_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_card_core1_regs_fifo2_reg_word91_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 0)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -4610,7 +4614,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_pci_slave2_pci_requests2_local_addr == 260));
+assign card1_card_core1_regs_fifo2_reg_word99_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_card_core1_regs_fifo2_reg_word90_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 4)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4628,7 +4632,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
+assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_reg_word90_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 4)));
 
 
 
@@ -4719,7 +4723,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_pci_slave2_pci_requests2_local_addr == 324));
+assign card1_card_core1_regs_fifo2_reg_word100_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_card_core1_regs_fifo2_reg_word91_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 4)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4737,7 +4741,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
+assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_reg_word91_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 4)));
 
 
 
@@ -4828,7 +4832,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_pci_slave2_pci_requests2_local_addr == 264));
+assign card1_card_core1_regs_fifo2_reg_word101_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_card_core1_regs_fifo2_reg_word90_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 8)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4846,7 +4850,7 @@ assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {8'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_written_addr == 264));
+assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_reg_word90_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 8)));
 
 
 
@@ -4898,7 +4902,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_pci_slave2_pci_requests2_local_addr == 328));
+assign card1_card_core1_regs_fifo2_reg_word102_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_card_core1_regs_fifo2_reg_word91_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 8)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4916,7 +4920,7 @@ assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {8'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_written_addr == 328));
+assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_reg_word91_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 8)));
 
 
 
@@ -5974,6 +5978,16 @@ assign card1_card_core1_regs_fifo2_reg_word122_shown_wide = {25'h0, card1_card_c
 
 
 assign card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped = card1_card_core1_regs_fifo2_reg_word121_chain_out_clamped;
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word90_in_block_read = (card1_pci_slave2_pci_requests2_local_addr[12-1:6] == 4);
+assign card1_card_core1_regs_fifo2_reg_word90_in_block_write = (card1_card_core1_regs_fifo2_written_addr[12-1:6] == 4);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word91_in_block_read = (card1_pci_slave2_pci_requests2_local_addr[12-1:6] == 5);
+assign card1_card_core1_regs_fifo2_reg_word91_in_block_write = (card1_card_core1_regs_fifo2_written_addr[12-1:6] == 5);
 
 
 
