@@ -909,6 +909,8 @@ reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
+wire card_core0_regs_fifo1_sequencer1_pulse_in;
+reg [1:0] card_core0_regs_fifo1_sequencer1_pulses_mask;
 wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
 wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
@@ -1122,7 +1124,6 @@ reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
 reg card_core0_regs_fifo1_homing1_port_load;
-wire [1:0] card_core0_regs_fifo1_pulse_source2_pulses_mask;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
@@ -1331,7 +1332,6 @@ assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word79_set_mine = 1'd0;
 assign card_core0_regs_fifo1_machine_guard1_lagging = 1'd0;
 assign card_core0_regs_fifo1_machine_guard1_lagging_axis = 3'd0;
-assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
 assign card_core0_regs_fifo1_status_words1_words_index_fired = 1'd0;
 assign card_core0_regs_fifo1_status_words1_words_probe_fired = 1'd0;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
@@ -5406,11 +5406,8 @@ end
 
 always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_check_axes
     card_core0_regs_fifo1_sequencer1_arriving_out_of_range = 1'b0;
-    if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1)) begin
+    if (((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) || (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3))) begin
         card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] & 60) != 0);
-    end
-    else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 3)) begin
-        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) && (card_core0_regs_fifo1_fifo_dout[26-1:20] != 3));
     end
     else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2)) begin
         card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[16-1:13] >= 2) || (card_core0_regs_fifo1_fifo_dout[20-1:17] >= 2) || ((card_core0_regs_fifo1_fifo_dout[16-1:13] == card_core0_regs_fifo1_fifo_dout[20-1:17]) && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)) || (card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) || (1'b1 && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)));
@@ -5420,7 +5417,7 @@ end
 
 always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_slots
     card_core0_regs_fifo1_sequencer1_arriving_slots = 15;
-    if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1)) begin
+    if (((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) || (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3))) begin
         if ((card_core0_regs_fifo1_fifo_dout[26-1:20] == 0)) begin
             card_core0_regs_fifo1_sequencer1_arriving_slots = 3;
         end
@@ -5653,6 +5650,22 @@ end
 
 
 assign card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+assign card_core0_regs_fifo1_sequencer1_pulse_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_pulse_axes
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_pulses_mask <= 3;
+    end
+    else begin
+        if (card_core0_regs_fifo1_sequencer1_pulse_in) begin
+            card_core0_regs_fifo1_sequencer1_pulses_mask <= 3;
+            if ((card_core0_regs_fifo1_fifo_dout[20+:2] != 0)) begin
+                card_core0_regs_fifo1_sequencer1_pulses_mask <= card_core0_regs_fifo1_fifo_dout[20+:2];
+            end
+        end
+    end
+end
 
 
 
@@ -7394,7 +7407,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -7407,13 +7420,13 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
         card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word60__store42_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_pulses_mask[0]);
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -7426,7 +7439,7 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
         card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word61__store43_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_pulses_mask[1]);
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
     end
 end

@@ -818,6 +818,8 @@ reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
+wire sequencer0_pulse_in;
+reg [1:0] sequencer0_pulses_mask;
 wire signed [23:0] sequencer0_pulses_count_x;
 wire signed [23:0] sequencer0_pulses_count_y;
 reg sequencer0_arriving_has_operands;
@@ -1016,7 +1018,6 @@ reg [15:0] homing0_port_period;
 reg homing0_port_retarget;
 reg homing0_port_ended;
 reg homing0_port_load;
-wire [1:0] pulse_source0_pulses_mask;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
 reg status_words0_error_before;
@@ -1055,7 +1056,6 @@ assign reg_word36_set_mine = 1'd0;
 assign reg_word38_set_mine = 1'd0;
 assign machine_guard0_lagging = 1'd0;
 assign machine_guard0_lagging_axis = 3'd0;
-assign pulse_source0_pulses_mask = 2'd3;
 assign status_words0_words_index_fired = 1'd0;
 assign status_words0_words_probe_fired = 1'd0;
 assign direct_busy[1] = direct_pulse1_command_busy;
@@ -3909,11 +3909,8 @@ end
 
 always @(fifo_dout) begin: sequencer0_command_header0_check_axes
     sequencer0_arriving_out_of_range = 1'b0;
-    if ((fifo_dout[32-1:28] == 1)) begin
+    if (((fifo_dout[32-1:28] == 1) || (fifo_dout[32-1:28] == 3))) begin
         sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] & 60) != 0);
-    end
-    else if ((fifo_dout[32-1:28] == 3)) begin
-        sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] != 0) && (fifo_dout[26-1:20] != 3));
     end
     else if ((fifo_dout[32-1:28] == 2)) begin
         sequencer0_arriving_out_of_range = ((fifo_dout[16-1:13] >= 2) || (fifo_dout[20-1:17] >= 2) || ((fifo_dout[16-1:13] == fifo_dout[20-1:17]) && (fifo_dout[16-1:13] != 0)) || (fifo_dout[26-1:20] != 0) || (1'b1 && (fifo_dout[16-1:13] != 0)));
@@ -3923,7 +3920,7 @@ end
 
 always @(fifo_dout) begin: sequencer0_command_header0_slots
     sequencer0_arriving_slots = 15;
-    if ((fifo_dout[32-1:28] == 1)) begin
+    if (((fifo_dout[32-1:28] == 1) || (fifo_dout[32-1:28] == 3))) begin
         if ((fifo_dout[26-1:20] == 0)) begin
             sequencer0_arriving_slots = 3;
         end
@@ -4156,6 +4153,22 @@ end
 
 
 assign sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
+assign sequencer0_pulse_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 3) && (!sequencer_clear) && (!sequencer0_discard));
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_pulse_axes
+    if (reset == 0) begin
+        sequencer0_pulses_mask <= 3;
+    end
+    else begin
+        if (sequencer0_pulse_in) begin
+            sequencer0_pulses_mask <= 3;
+            if ((fifo_dout[20+:2] != 0)) begin
+                sequencer0_pulses_mask <= fifo_dout[20+:2];
+            end
+        end
+    end
+end
 
 
 
@@ -5897,7 +5910,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
@@ -5910,13 +5923,13 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
-        direct_pulse0_command_load = (seq_load && pulse_source0_pulses_mask[0]);
+        direct_pulse0_command_load = (seq_load && sequencer0_pulses_mask[0]);
         direct_pulse0_command_count = sequencer0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
@@ -5929,7 +5942,7 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
-        direct_pulse1_command_load = (seq_load && pulse_source0_pulses_mask[1]);
+        direct_pulse1_command_load = (seq_load && sequencer0_pulses_mask[1]);
         direct_pulse1_command_count = sequencer0_pulses_count_y;
     end
 end

@@ -932,6 +932,8 @@ reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
+wire card1_card_core1_regs_fifo2_sequencer2_pulse_in;
+reg [1:0] card1_card_core1_regs_fifo2_sequencer2_pulses_mask;
 wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
 wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
@@ -1145,7 +1147,6 @@ reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
-wire [1:0] card1_card_core1_regs_fifo2_pulse_source4_pulses_mask;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
@@ -1354,7 +1355,6 @@ assign card1_card_core1_regs_fifo2_reg_word118_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word120_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_machine_guard2_lagging = 1'd0;
 assign card1_card_core1_regs_fifo2_machine_guard2_lagging_axis = 3'd0;
-assign card1_card_core1_regs_fifo2_pulse_source4_pulses_mask = 2'd3;
 assign card1_card_core1_regs_fifo2_status_words2_words_index_fired = 1'd0;
 assign card1_card_core1_regs_fifo2_status_words2_words_probe_fired = 1'd0;
 
@@ -6237,11 +6237,8 @@ end
 
 always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_check_axes
     card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = 1'b0;
-    if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1)) begin
+    if (((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3))) begin
         card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] & 60) != 0);
-    end
-    else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3)) begin
-        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) && (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 3));
     end
     else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2)) begin
         card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] >= 2) || (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] >= 2) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == card1_card_core1_regs_fifo2_fifo_dout[20-1:17]) && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)) || (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) || (1'b1 && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)));
@@ -6251,7 +6248,7 @@ end
 
 always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_slots
     card1_card_core1_regs_fifo2_sequencer2_arriving_slots = 15;
-    if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1)) begin
+    if (((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3))) begin
         if ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] == 0)) begin
             card1_card_core1_regs_fifo2_sequencer2_arriving_slots = 3;
         end
@@ -6484,6 +6481,22 @@ end
 
 
 assign card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+assign card1_card_core1_regs_fifo2_sequencer2_pulse_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_pulse_axes
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= 3;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_sequencer2_pulse_in) begin
+            card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= 3;
+            if ((card1_card_core1_regs_fifo2_fifo_dout[20+:2] != 0)) begin
+                card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= card1_card_core1_regs_fifo2_fifo_dout[20+:2];
+            end
+        end
+    end
+end
 
 
 
@@ -8225,7 +8238,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -8238,13 +8251,13 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word101__store70_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_pulses_mask[0]);
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -8257,7 +8270,7 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word102__store71_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_pulses_mask[1]);
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
     end
 end

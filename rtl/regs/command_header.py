@@ -42,13 +42,12 @@ def command_header(word, header):
     (``header.axes``) lacks; an ARC plane axis it lacks, or U_AXIS = V_AXIS
     other than 0/0, or on a card of two axes a plane other than X, Y; a HELIX
     axis the card lacks or that is u or v (on a card of two axes every HELIX
-    axis); a PULSE axis the card lacks (on a card of two axes a PULSE with
-    AXES other than 0 or X and Y).  The rules on a helix's operands are the
+    axis); a PULSE axis the card lacks.  The rules on a helix's operands are the
     sequencer's (``rtl/regs/axis_operands.py``).  The plane ``u``, ``v``:
     U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: the operand
     registers its operands go to (the sequencer puts each into the lowest
-    slot left): on a card of two axes a LINE's axes (0: X and Y), all ones
-    otherwise; on more axes XS .. YE in slots 0..3, ITERATIONS in 4 and an
+    slot left): on a card of two axes a LINE's or PULSE's axes (0: X and
+    Y), all ones otherwise; on more axes XS .. YE in slots 0..3, ITERATIONS in 4 and an
     axis i's displacement or count in 5 + i (``axis_operands``).
 
         word      ==X=ARC hdr=X=XS=X=YS=X ...
@@ -105,10 +104,8 @@ def command_header(word, header):
         @always_comb
         def check_axes():
             header.out_of_range.next = False
-            if word[32:isa.OPCODE_LSB] == line_op:
+            if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
                 header.out_of_range.next = (word[mask_msb:mask_lsb] & beyond) != 0
-            elif word[32:isa.OPCODE_LSB] == pulse_op:
-                header.out_of_range.next = word[mask_msb:mask_lsb] != 0 and word[mask_msb:mask_lsb] != XY_MASK
             elif word[32:isa.OPCODE_LSB] == arc_op:
                 header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
                                             or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
@@ -118,7 +115,7 @@ def command_header(word, header):
         @always_comb
         def slots():
             header.slots.next = all_slots
-            if word[32:isa.OPCODE_LSB] == line_op:
+            if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
                 if word[mask_msb:mask_lsb] == 0:
                     header.slots.next = XY_MASK
                 else:
