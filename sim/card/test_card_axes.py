@@ -206,7 +206,10 @@ TWO_AXIS_PULSES = (isa.encode("PULSE", 4, AXES=0b01) + isa.encode("PULSE", -3, A
                    + isa.encode("PULSE", -2, 5, AXES=0b11))
 
 
-@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+@pytest.mark.parametrize("cosim", [
+    pytest.param(False, id="myhdl"),
+    pytest.param(True, id="icarus", marks=pytest.mark.slow(reason="the generated Verilog of the same scenario (10 s): "
+                                                                  "the default suite is at its ten minutes"))])
 def test_two_axis_card_pulses_any_mask_of_its_axes(cosim):
     # golden: the counts as the decoder reads the stream (models.commands), which the model of
     # the card's RANGE rules takes on two axes (models.dda_axes.check_pulse)
