@@ -428,11 +428,15 @@ wire [31:0] card_core0_regs_fifo1_reg_word48_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word48_chain_out_data;
 wire card_core0_regs_fifo1_reg_word48_chain_out_clamped;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown;
+wire card_core0_regs_fifo1_reg_word49_in_block_read;
+wire card_core0_regs_fifo1_reg_word49_in_block_write;
 wire card_core0_regs_fifo1_reg_word49_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word49_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word49_chain_out_data;
 wire card_core0_regs_fifo1_reg_word49_chain_out_clamped;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown;
+wire card_core0_regs_fifo1_reg_word50_in_block_read;
+wire card_core0_regs_fifo1_reg_word50_in_block_write;
 wire card_core0_regs_fifo1_reg_word50_mine;
 wire [31:0] card_core0_regs_fifo1_reg_word50_shown_wide;
 reg [31:0] card_core0_regs_fifo1_reg_word50_chain_out_data;
@@ -905,6 +909,8 @@ reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
+wire card_core0_regs_fifo1_sequencer1_pulse_in;
+reg [1:0] card_core0_regs_fifo1_sequencer1_pulses_mask;
 wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
 wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
 reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
@@ -912,7 +918,7 @@ reg card_core0_regs_fifo1_sequencer1_arriving_moves;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_slots;
 reg card_core0_regs_fifo1_sequencer1_arriving_known;
-reg card_core0_regs_fifo1_sequencer1_arriving_reserved;
+wire card_core0_regs_fifo1_sequencer1_arriving_reserved;
 reg card_core0_regs_fifo1_sequencer1_arriving_out_of_range;
 reg card_core0_regs_fifo1_sequencer1_dda_start;
 reg card_core0_regs_fifo1_sequencer1_dda_done;
@@ -930,13 +936,32 @@ reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ys;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_xe;
 reg signed [23:0] card_core0_regs_fifo1_sequencer1_dda_ye;
 reg [15:0] card_core0_regs_fifo1_sequencer1_mark_tag;
-reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_high;
-reg [15:0] card_core0_regs_fifo1_sequencer1_command_header1_allowed_low;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
 reg card_core0_regs_fifo1_sequencer1_command_header1_has_axes;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_lead_count;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_ones;
 reg [3:0] card_core0_regs_fifo1_sequencer1_command_header1_zero_count;
+wire [6:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag;
+wire [3:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_flag;
+wire [11:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_flag;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_flag;
+wire [2:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_flag;
+wire [5:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_flag;
+wire [1:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing;
+wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag;
+wire [3:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members;
+reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
 wire card_core0_regs_fifo1_feed_rate1_advancing;
@@ -1099,7 +1124,6 @@ reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
 reg card_core0_regs_fifo1_homing1_port_load;
-wire [1:0] card_core0_regs_fifo1_pulse_source2_pulses_mask;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
@@ -1308,13 +1332,50 @@ assign card_core0_regs_fifo1_reg_word77_set_mine = 1'd0;
 assign card_core0_regs_fifo1_reg_word79_set_mine = 1'd0;
 assign card_core0_regs_fifo1_machine_guard1_lagging = 1'd0;
 assign card_core0_regs_fifo1_machine_guard1_lagging_axis = 3'd0;
-assign card_core0_regs_fifo1_pulse_source2_pulses_mask = 2'd3;
 assign card_core0_regs_fifo1_status_words1_words_index_fired = 1'd0;
 assign card_core0_regs_fifo1_status_words1_words_probe_fired = 1'd0;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
 assign card_core0_regs_fifo1_requested[0] = card_core0_regs_fifo1_requests_step_x;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[6] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[5] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[4] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[3] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[2] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[1] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[0] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag;
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[3] = card_core0_regs_fifo1_fifo_dout[0];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[2] = card_core0_regs_fifo1_fifo_dout[1];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[1] = card_core0_regs_fifo1_fifo_dout[2];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members[0] = card_core0_regs_fifo1_fifo_dout[3];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[11] = card_core0_regs_fifo1_fifo_dout[4];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[10] = card_core0_regs_fifo1_fifo_dout[5];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[9] = card_core0_regs_fifo1_fifo_dout[6];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[8] = card_core0_regs_fifo1_fifo_dout[7];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[7] = card_core0_regs_fifo1_fifo_dout[8];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[6] = card_core0_regs_fifo1_fifo_dout[9];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[5] = card_core0_regs_fifo1_fifo_dout[10];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[4] = card_core0_regs_fifo1_fifo_dout[11];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[3] = card_core0_regs_fifo1_fifo_dout[12];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[2] = card_core0_regs_fifo1_fifo_dout[13];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[1] = card_core0_regs_fifo1_fifo_dout[14];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members[0] = card_core0_regs_fifo1_fifo_dout[15];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members[2] = card_core0_regs_fifo1_fifo_dout[17];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members[1] = card_core0_regs_fifo1_fifo_dout[18];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members[0] = card_core0_regs_fifo1_fifo_dout[19];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[5] = card_core0_regs_fifo1_fifo_dout[20];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[4] = card_core0_regs_fifo1_fifo_dout[21];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[3] = card_core0_regs_fifo1_fifo_dout[22];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[2] = card_core0_regs_fifo1_fifo_dout[23];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[1] = card_core0_regs_fifo1_fifo_dout[24];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members[0] = card_core0_regs_fifo1_fifo_dout[25];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members[1] = card_core0_regs_fifo1_fifo_dout[26];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members[0] = card_core0_regs_fifo1_fifo_dout[27];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[3] = card_core0_regs_fifo1_fifo_dout[28];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[2] = card_core0_regs_fifo1_fifo_dout[29];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[1] = card_core0_regs_fifo1_fifo_dout[30];
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members[0] = card_core0_regs_fifo1_fifo_dout[31];
 assign card_core0_regs_fifo1_pulse_out1_levels[1] = card_core0_regs_fifo1_pulse_out1_axis_y_level;
 assign card_core0_regs_fifo1_pulse_out1_levels[0] = card_core0_regs_fifo1_pulse_out1_axis_x_level;
 assign card_core0_regs_fifo1_pulse_out1_pulses[1] = card_core0_regs_fifo1_pulse_out1_axis_y_pulse;
@@ -2983,7 +3044,7 @@ assign card_core0_regs_fifo1_reg_word48_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word49_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (pci_slave1_pci_requests1_local_addr == 256));
+assign card_core0_regs_fifo1_reg_word49_mine = ((pci_slave1_pci_requests1_local_addr == 32) || (card_core0_regs_fifo1_reg_word49_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 0)));
 
 
 always @(card_core0_regs_fifo1_reg_word49_mine, card_core0_regs_fifo1_reg_word49_shown_wide, card_core0_regs_fifo1_reg_word48_chain_out_data) begin: card_core0_regs_fifo1_reg_word49_read_chain
@@ -3005,7 +3066,7 @@ assign card_core0_regs_fifo1_reg_word49_chain_out_clamped = card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word50_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (pci_slave1_pci_requests1_local_addr == 320));
+assign card_core0_regs_fifo1_reg_word50_mine = ((pci_slave1_pci_requests1_local_addr == 36) || (card_core0_regs_fifo1_reg_word50_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 0)));
 
 
 always @(card_core0_regs_fifo1_reg_word50_mine, card_core0_regs_fifo1_reg_word50_shown_wide, card_core0_regs_fifo1_reg_word49_chain_out_data) begin: card_core0_regs_fifo1_reg_word50_read_chain
@@ -3722,7 +3783,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (pci_slave1_pci_requests1_local_addr == 260));
+assign card_core0_regs_fifo1_reg_word58_mine = ((pci_slave1_pci_requests1_local_addr == 68) || (card_core0_regs_fifo1_reg_word49_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 4)));
 
 
 always @(card_core0_regs_fifo1_reg_word58_mine, card_core0_regs_fifo1_reg_word58_shown_wide, card_core0_regs_fifo1_reg_word57_chain_out_data) begin: card_core0_regs_fifo1_reg_word58_read_chain
@@ -3740,7 +3801,7 @@ assign card_core0_regs_fifo1_reg_word58_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_written_addr == 260));
+assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_written_addr == 68) || (card_core0_regs_fifo1_reg_word49_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 4)));
 
 
 
@@ -3831,7 +3892,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (pci_slave1_pci_requests1_local_addr == 324));
+assign card_core0_regs_fifo1_reg_word59_mine = ((pci_slave1_pci_requests1_local_addr == 72) || (card_core0_regs_fifo1_reg_word50_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 4)));
 
 
 always @(card_core0_regs_fifo1_reg_word59_mine, card_core0_regs_fifo1_reg_word59_shown_wide, card_core0_regs_fifo1_reg_word58_chain_out_data) begin: card_core0_regs_fifo1_reg_word59_read_chain
@@ -3849,7 +3910,7 @@ assign card_core0_regs_fifo1_reg_word59_shown_wide = {16'h0, card_core0_regs_fif
 
 
 
-assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_written_addr == 324));
+assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_written_addr == 72) || (card_core0_regs_fifo1_reg_word50_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 4)));
 
 
 
@@ -3940,7 +4001,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (pci_slave1_pci_requests1_local_addr == 264));
+assign card_core0_regs_fifo1_reg_word60_mine = ((pci_slave1_pci_requests1_local_addr == 76) || (card_core0_regs_fifo1_reg_word49_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 8)));
 
 
 always @(card_core0_regs_fifo1_reg_word60_mine, card_core0_regs_fifo1_reg_word60_shown_wide, card_core0_regs_fifo1_reg_word59_chain_out_data) begin: card_core0_regs_fifo1_reg_word60_read_chain
@@ -3958,7 +4019,7 @@ assign card_core0_regs_fifo1_reg_word60_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_written_addr == 264));
+assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_written_addr == 76) || (card_core0_regs_fifo1_reg_word49_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 8)));
 
 
 
@@ -4010,7 +4071,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (pci_slave1_pci_requests1_local_addr == 328));
+assign card_core0_regs_fifo1_reg_word61_mine = ((pci_slave1_pci_requests1_local_addr == 80) || (card_core0_regs_fifo1_reg_word50_in_block_read && (pci_slave1_pci_requests1_local_addr[6-1:0] == 8)));
 
 
 always @(card_core0_regs_fifo1_reg_word61_mine, card_core0_regs_fifo1_reg_word61_shown_wide, card_core0_regs_fifo1_reg_word60_chain_out_data) begin: card_core0_regs_fifo1_reg_word61_read_chain
@@ -4028,7 +4089,7 @@ assign card_core0_regs_fifo1_reg_word61_shown_wide = {8'h0, card_core0_regs_fifo
 
 
 
-assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_written_addr == 328));
+assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_written_addr == 80) || (card_core0_regs_fifo1_reg_word50_in_block_write && (card_core0_regs_fifo1_written_addr[6-1:0] == 8)));
 
 
 
@@ -5089,6 +5150,16 @@ assign card_core0_regs_fifo1_reg_word81_chain_out_clamped = card_core0_regs_fifo
 
 
 
+assign card_core0_regs_fifo1_reg_word49_in_block_read = (pci_slave1_pci_requests1_local_addr[12-1:6] == 4);
+assign card_core0_regs_fifo1_reg_word49_in_block_write = (card_core0_regs_fifo1_written_addr[12-1:6] == 4);
+
+
+
+assign card_core0_regs_fifo1_reg_word50_in_block_read = (pci_slave1_pci_requests1_local_addr[12-1:6] == 5);
+assign card_core0_regs_fifo1_reg_word50_in_block_write = (card_core0_regs_fifo1_written_addr[12-1:6] == 5);
+
+
+
 assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
 
 
@@ -5096,7 +5167,7 @@ assign card_core0_regs_fifo1_sequencer1_arriving_coord_fits = ((card_core0_regs_
 assign card_core0_regs_fifo1_sequencer1_arriving_count_fits = ((card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 0) || (card_core0_regs_fifo1_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup8_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_fixed_count = 0;
@@ -5118,7 +5189,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup9_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_zero_count = 2;
@@ -5140,7 +5211,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup10_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
@@ -5162,7 +5233,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup11_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_has_axes = 1;
@@ -5184,7 +5255,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup12_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_known = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_known = 1;
@@ -5206,7 +5277,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup13_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_moves = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_moves = 1;
@@ -5228,7 +5299,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup16_look_up
+always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup14_look_up
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 0;
         1: card_core0_regs_fifo1_sequencer1_arriving_has_operands = 1;
@@ -5250,51 +5321,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup17_look_up
-    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62449;
-        2: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62463;
-        3: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 62448;
-        4: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
-        5: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
-        6: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 61440;
-        7: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        8: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        9: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        10: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        11: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        12: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        13: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        14: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-        default: card_core0_regs_fifo1_sequencer1_command_header1_allowed_high = 0;
-    endcase
-end
-
-
-always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup18_look_up
-    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
-        0: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        1: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        2: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 65535;
-        3: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        4: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 15;
-        5: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        6: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 65535;
-        7: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        8: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        9: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        10: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        11: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        12: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        13: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        14: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-        default: card_core0_regs_fifo1_sequencer1_command_header1_allowed_low = 0;
-    endcase
-end
-
-
-always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup19_look_up
+always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_sequencer1_command_header1__lookup15_look_up
     case (card_core0_regs_fifo1_fifo_dout[26-1:20])
         0: card_core0_regs_fifo1_sequencer1_command_header1_ones = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_ones = 1;
@@ -5364,7 +5391,7 @@ always @(card_core0_regs_fifo1_fifo_dout[26-1:20]) begin: card_core0_regs_fifo1_
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_command_header1_has_axes, card_core0_regs_fifo1_sequencer1_command_header1_ones, card_core0_regs_fifo1_sequencer1_command_header1_allowed_high, card_core0_regs_fifo1_sequencer1_command_header1_allowed_low, card_core0_regs_fifo1_sequencer1_command_header1_lead_count, card_core0_regs_fifo1_sequencer1_command_header1_fixed_count) begin: card_core0_regs_fifo1_sequencer1_command_header1_frame
+always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0_regs_fifo1_fifo_dout, card_core0_regs_fifo1_sequencer1_command_header1_has_axes, card_core0_regs_fifo1_sequencer1_command_header1_ones, card_core0_regs_fifo1_sequencer1_command_header1_lead_count, card_core0_regs_fifo1_sequencer1_command_header1_fixed_count) begin: card_core0_regs_fifo1_sequencer1_command_header1_frame
     card_core0_regs_fifo1_sequencer1_arriving_operands = card_core0_regs_fifo1_sequencer1_command_header1_fixed_count;
     if (card_core0_regs_fifo1_sequencer1_command_header1_has_axes) begin
         if ((card_core0_regs_fifo1_fifo_dout[26-1:20] == 0)) begin
@@ -5374,17 +5401,13 @@ always @(card_core0_regs_fifo1_sequencer1_command_header1_zero_count, card_core0
             card_core0_regs_fifo1_sequencer1_arriving_operands = ((card_core0_regs_fifo1_sequencer1_command_header1_fixed_count + card_core0_regs_fifo1_sequencer1_command_header1_lead_count) + card_core0_regs_fifo1_sequencer1_command_header1_ones);
         end
     end
-    card_core0_regs_fifo1_sequencer1_arriving_reserved = (((card_core0_regs_fifo1_fifo_dout[32-1:16] & (~card_core0_regs_fifo1_sequencer1_command_header1_allowed_high)) != 0) || ((card_core0_regs_fifo1_fifo_dout[16-1:0] & (~card_core0_regs_fifo1_sequencer1_command_header1_allowed_low)) != 0));
 end
 
 
 always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_check_axes
     card_core0_regs_fifo1_sequencer1_arriving_out_of_range = 1'b0;
-    if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1)) begin
+    if (((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) || (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3))) begin
         card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] & 60) != 0);
-    end
-    else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 3)) begin
-        card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) && (card_core0_regs_fifo1_fifo_dout[26-1:20] != 3));
     end
     else if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 2)) begin
         card_core0_regs_fifo1_sequencer1_arriving_out_of_range = ((card_core0_regs_fifo1_fifo_dout[16-1:13] >= 2) || (card_core0_regs_fifo1_fifo_dout[20-1:17] >= 2) || ((card_core0_regs_fifo1_fifo_dout[16-1:13] == card_core0_regs_fifo1_fifo_dout[20-1:17]) && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)) || (card_core0_regs_fifo1_fifo_dout[26-1:20] != 0) || (1'b1 && (card_core0_regs_fifo1_fifo_dout[16-1:13] != 0)));
@@ -5394,7 +5417,7 @@ end
 
 always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1_slots
     card_core0_regs_fifo1_sequencer1_arriving_slots = 15;
-    if ((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1)) begin
+    if (((card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) || (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3))) begin
         if ((card_core0_regs_fifo1_fifo_dout[26-1:20] == 0)) begin
             card_core0_regs_fifo1_sequencer1_arriving_slots = 3;
         end
@@ -5403,6 +5426,192 @@ always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer
         end
     end
 end
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class8_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class9_refusing && (card_core0_regs_fifo1_fifo_dout[16] != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class10_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class11_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class12_members != 0));
+
+
+always @(card_core0_regs_fifo1_fifo_dout) begin: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_look_up
+    case (card_core0_regs_fifo1_fifo_dout[32-1:28])
+        0: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        1: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        2: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        3: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        4: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        5: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        6: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 0;
+        7: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        8: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        9: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        10: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        11: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        12: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        13: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        14: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+        default: card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing = 1;
+    endcase
+end
+
+
+
+assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing && (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members != 0));
+
+
+
+assign card_core0_regs_fifo1_sequencer1_arriving_reserved = (card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag != 0);
 
 
 always @(posedge clock) begin: card_core0_regs_fifo1_sequencer1_operand_register4_hold
@@ -5441,6 +5650,22 @@ end
 
 
 assign card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+assign card_core0_regs_fifo1_sequencer1_pulse_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_pulse_axes
+    if (reset == 0) begin
+        card_core0_regs_fifo1_sequencer1_pulses_mask <= 3;
+    end
+    else begin
+        if (card_core0_regs_fifo1_sequencer1_pulse_in) begin
+            card_core0_regs_fifo1_sequencer1_pulses_mask <= 3;
+            if ((card_core0_regs_fifo1_fifo_dout[20+:2] != 0)) begin
+                card_core0_regs_fifo1_sequencer1_pulses_mask <= card_core0_regs_fifo1_fifo_dout[20+:2];
+            end
+        end
+    end
+end
 
 
 
@@ -5539,17 +5764,18 @@ always @(card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_sequencer1_arri
 end
 
 
-always @(card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
+always @(card_core0_regs_fifo1_sequencer1_slots_left, card_core0_regs_fifo1_sequencer1_word_due, card_core0_regs_fifo1_sequencer_clear, card_core0_regs_fifo1_sequencer1_discard, card_core0_regs_fifo1_sequencer1_fetched) begin: card_core0_regs_fifo1_sequencer1_operand_routing
     reg [4-1:0] taken;
     integer index;
     taken = 4'h0;
-    if ((card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched != 0) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard))) begin
-        for (index=4-1; index>=0; index=index-1) begin
-            if (card_core0_regs_fifo1_sequencer1_slots_left[index]) begin
-                taken = 0;
-                taken[index] = 1;
-            end
+    for (index=4-1; index>=0; index=index-1) begin
+        if (card_core0_regs_fifo1_sequencer1_slots_left[index]) begin
+            taken = 0;
+            taken[index] = 1;
         end
+    end
+    if (((!card_core0_regs_fifo1_sequencer1_word_due) || (card_core0_regs_fifo1_sequencer1_fetched == 0) || card_core0_regs_fifo1_sequencer_clear || card_core0_regs_fifo1_sequencer1_discard)) begin
+        taken = 0;
     end
     card_core0_regs_fifo1_sequencer1_slot_taken = taken;
 end
@@ -7181,7 +7407,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -7194,13 +7420,13 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
         card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word60__store42_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[0]);
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_pulses_mask[0]);
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_pulse_source2_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -7213,7 +7439,7 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
         card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word61__store43_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_pulse_source2_pulses_mask[1]);
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_pulses_mask[1]);
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
     end
 end

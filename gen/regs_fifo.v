@@ -337,11 +337,15 @@ wire [31:0] reg_word7_shown_wide;
 reg [31:0] reg_word7_chain_out_data;
 wire reg_word7_chain_out_clamped;
 wire [31:0] reg_word8_shown;
+wire reg_word8_in_block_read;
+wire reg_word8_in_block_write;
 wire reg_word8_mine;
 wire [31:0] reg_word8_shown_wide;
 reg [31:0] reg_word8_chain_out_data;
 wire reg_word8_chain_out_clamped;
 wire [31:0] reg_word9_shown;
+wire reg_word9_in_block_read;
+wire reg_word9_in_block_write;
 wire reg_word9_mine;
 wire [31:0] reg_word9_shown_wide;
 reg [31:0] reg_word9_chain_out_data;
@@ -814,6 +818,8 @@ reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
+wire sequencer0_pulse_in;
+reg [1:0] sequencer0_pulses_mask;
 wire signed [23:0] sequencer0_pulses_count_x;
 wire signed [23:0] sequencer0_pulses_count_y;
 reg sequencer0_arriving_has_operands;
@@ -821,17 +827,36 @@ reg sequencer0_arriving_moves;
 reg [3:0] sequencer0_arriving_operands;
 reg [3:0] sequencer0_arriving_slots;
 reg sequencer0_arriving_known;
-reg sequencer0_arriving_reserved;
+wire sequencer0_arriving_reserved;
 reg sequencer0_arriving_out_of_range;
 reg sequencer0_mark_strobe;
 reg [15:0] sequencer0_mark_tag;
-reg [15:0] sequencer0_command_header0_allowed_high;
-reg [15:0] sequencer0_command_header0_allowed_low;
 reg [3:0] sequencer0_command_header0_fixed_count;
 reg sequencer0_command_header0_has_axes;
 reg [3:0] sequencer0_command_header0_lead_count;
 reg [3:0] sequencer0_command_header0_ones;
 reg [3:0] sequencer0_command_header0_zero_count;
+wire [6:0] sequencer0_command_header0__reserved_bits0_any_flag;
+wire sequencer0_command_header0__reserved_bits0__reserved_class0_flag;
+wire [3:0] sequencer0_command_header0__reserved_bits0__reserved_class0_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class0_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class1_flag;
+wire [11:0] sequencer0_command_header0__reserved_bits0__reserved_class1_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class1_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class2_flag;
+reg sequencer0_command_header0__reserved_bits0__reserved_class2_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class3_flag;
+wire [2:0] sequencer0_command_header0__reserved_bits0__reserved_class3_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class3_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class4_flag;
+wire [5:0] sequencer0_command_header0__reserved_bits0__reserved_class4_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class4_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class5_flag;
+wire [1:0] sequencer0_command_header0__reserved_bits0__reserved_class5_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class5_refusing;
+wire sequencer0_command_header0__reserved_bits0__reserved_class6_flag;
+wire [3:0] sequencer0_command_header0__reserved_bits0__reserved_class6_members;
+reg sequencer0_command_header0__reserved_bits0__reserved_class6_refusing;
 wire feed_rate0_above;
 wire feed_rate0_above_floor;
 wire feed_rate0_advancing;
@@ -993,7 +1018,6 @@ reg [15:0] homing0_port_period;
 reg homing0_port_retarget;
 reg homing0_port_ended;
 reg homing0_port_load;
-wire [1:0] pulse_source0_pulses_mask;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
 reg status_words0_error_before;
@@ -1032,13 +1056,50 @@ assign reg_word36_set_mine = 1'd0;
 assign reg_word38_set_mine = 1'd0;
 assign machine_guard0_lagging = 1'd0;
 assign machine_guard0_lagging_axis = 3'd0;
-assign pulse_source0_pulses_mask = 2'd3;
 assign status_words0_words_index_fired = 1'd0;
 assign status_words0_words_probe_fired = 1'd0;
 assign direct_busy[1] = direct_pulse1_command_busy;
 assign direct_busy[0] = direct_pulse0_command_busy;
 assign requested[1] = requests_step_y;
 assign requested[0] = requests_step_x;
+assign sequencer0_command_header0__reserved_bits0_any_flag[6] = sequencer0_command_header0__reserved_bits0__reserved_class0_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[5] = sequencer0_command_header0__reserved_bits0__reserved_class1_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[4] = sequencer0_command_header0__reserved_bits0__reserved_class2_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[3] = sequencer0_command_header0__reserved_bits0__reserved_class3_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[2] = sequencer0_command_header0__reserved_bits0__reserved_class4_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[1] = sequencer0_command_header0__reserved_bits0__reserved_class5_flag;
+assign sequencer0_command_header0__reserved_bits0_any_flag[0] = sequencer0_command_header0__reserved_bits0__reserved_class6_flag;
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[3] = fifo_dout[0];
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[2] = fifo_dout[1];
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[1] = fifo_dout[2];
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_members[0] = fifo_dout[3];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[11] = fifo_dout[4];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[10] = fifo_dout[5];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[9] = fifo_dout[6];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[8] = fifo_dout[7];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[7] = fifo_dout[8];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[6] = fifo_dout[9];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[5] = fifo_dout[10];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[4] = fifo_dout[11];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[3] = fifo_dout[12];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[2] = fifo_dout[13];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[1] = fifo_dout[14];
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_members[0] = fifo_dout[15];
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_members[2] = fifo_dout[17];
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_members[1] = fifo_dout[18];
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_members[0] = fifo_dout[19];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[5] = fifo_dout[20];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[4] = fifo_dout[21];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[3] = fifo_dout[22];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[2] = fifo_dout[23];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[1] = fifo_dout[24];
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_members[0] = fifo_dout[25];
+assign sequencer0_command_header0__reserved_bits0__reserved_class5_members[1] = fifo_dout[26];
+assign sequencer0_command_header0__reserved_bits0__reserved_class5_members[0] = fifo_dout[27];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[3] = fifo_dout[28];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[2] = fifo_dout[29];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[1] = fifo_dout[30];
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_members[0] = fifo_dout[31];
 assign pulse_out0_levels[1] = pulse_out0_axis_y_level;
 assign pulse_out0_levels[0] = pulse_out0_axis_x_level;
 assign pulse_out0_pulses[1] = pulse_out0_axis_y_pulse;
@@ -1486,7 +1547,7 @@ assign reg_word7_chain_out_clamped = reg_word6_chain_out_clamped;
 
 
 
-assign reg_word8_mine = ((local_addr == 32) || (local_addr == 256));
+assign reg_word8_mine = ((local_addr == 32) || (reg_word8_in_block_read && (local_addr[6-1:0] == 0)));
 
 
 always @(reg_word8_mine, reg_word8_shown_wide, reg_word7_chain_out_data) begin: reg_word8_read_chain
@@ -1508,7 +1569,7 @@ assign reg_word8_chain_out_clamped = reg_word7_chain_out_clamped;
 
 
 
-assign reg_word9_mine = ((local_addr == 36) || (local_addr == 320));
+assign reg_word9_mine = ((local_addr == 36) || (reg_word9_in_block_read && (local_addr[6-1:0] == 0)));
 
 
 always @(reg_word9_mine, reg_word9_shown_wide, reg_word8_chain_out_data) begin: reg_word9_read_chain
@@ -2225,7 +2286,7 @@ end
 
 
 
-assign reg_word17_mine = ((local_addr == 68) || (local_addr == 260));
+assign reg_word17_mine = ((local_addr == 68) || (reg_word8_in_block_read && (local_addr[6-1:0] == 4)));
 
 
 always @(reg_word17_mine, reg_word17_shown_wide, reg_word16_chain_out_data) begin: reg_word17_read_chain
@@ -2243,7 +2304,7 @@ assign reg_word17_shown_wide = {16'h0, reg_word17_shown};
 
 
 
-assign reg_word17_mine_write = ((written_addr == 68) || (written_addr == 260));
+assign reg_word17_mine_write = ((written_addr == 68) || (reg_word8_in_block_write && (written_addr[6-1:0] == 4)));
 
 
 
@@ -2334,7 +2395,7 @@ end
 
 
 
-assign reg_word18_mine = ((local_addr == 72) || (local_addr == 324));
+assign reg_word18_mine = ((local_addr == 72) || (reg_word9_in_block_read && (local_addr[6-1:0] == 4)));
 
 
 always @(reg_word18_mine, reg_word18_shown_wide, reg_word17_chain_out_data) begin: reg_word18_read_chain
@@ -2352,7 +2413,7 @@ assign reg_word18_shown_wide = {16'h0, reg_word18_shown};
 
 
 
-assign reg_word18_mine_write = ((written_addr == 72) || (written_addr == 324));
+assign reg_word18_mine_write = ((written_addr == 72) || (reg_word9_in_block_write && (written_addr[6-1:0] == 4)));
 
 
 
@@ -2443,7 +2504,7 @@ end
 
 
 
-assign reg_word19_mine = ((local_addr == 76) || (local_addr == 264));
+assign reg_word19_mine = ((local_addr == 76) || (reg_word8_in_block_read && (local_addr[6-1:0] == 8)));
 
 
 always @(reg_word19_mine, reg_word19_shown_wide, reg_word18_chain_out_data) begin: reg_word19_read_chain
@@ -2461,7 +2522,7 @@ assign reg_word19_shown_wide = {8'h0, reg_word19_shown};
 
 
 
-assign reg_word19_mine_write = ((written_addr == 76) || (written_addr == 264));
+assign reg_word19_mine_write = ((written_addr == 76) || (reg_word8_in_block_write && (written_addr[6-1:0] == 8)));
 
 
 
@@ -2513,7 +2574,7 @@ end
 
 
 
-assign reg_word20_mine = ((local_addr == 80) || (local_addr == 328));
+assign reg_word20_mine = ((local_addr == 80) || (reg_word9_in_block_read && (local_addr[6-1:0] == 8)));
 
 
 always @(reg_word20_mine, reg_word20_shown_wide, reg_word19_chain_out_data) begin: reg_word20_read_chain
@@ -2531,7 +2592,7 @@ assign reg_word20_shown_wide = {8'h0, reg_word20_shown};
 
 
 
-assign reg_word20_mine_write = ((written_addr == 80) || (written_addr == 328));
+assign reg_word20_mine_write = ((written_addr == 80) || (reg_word9_in_block_write && (written_addr[6-1:0] == 8)));
 
 
 
@@ -3592,6 +3653,16 @@ assign reg_word40_chain_out_clamped = reg_word39_chain_out_clamped;
 
 
 
+assign reg_word8_in_block_read = (local_addr[16-1:6] == 4);
+assign reg_word8_in_block_write = (written_addr[16-1:6] == 4);
+
+
+
+assign reg_word9_in_block_read = (local_addr[16-1:6] == 5);
+assign reg_word9_in_block_write = (written_addr[16-1:6] == 5);
+
+
+
 assign sequencer0_arriving_coord_fits = ((fifo_dout[32-1:(24 - 1)] == 0) || (fifo_dout[32-1:(24 - 1)] == 511));
 
 
@@ -3753,51 +3824,7 @@ always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup6_look_up
 end
 
 
-always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup7_look_up
-    case (fifo_dout[32-1:28])
-        0: sequencer0_command_header0_allowed_high = 0;
-        1: sequencer0_command_header0_allowed_high = 62449;
-        2: sequencer0_command_header0_allowed_high = 62463;
-        3: sequencer0_command_header0_allowed_high = 62448;
-        4: sequencer0_command_header0_allowed_high = 61440;
-        5: sequencer0_command_header0_allowed_high = 61440;
-        6: sequencer0_command_header0_allowed_high = 61440;
-        7: sequencer0_command_header0_allowed_high = 0;
-        8: sequencer0_command_header0_allowed_high = 0;
-        9: sequencer0_command_header0_allowed_high = 0;
-        10: sequencer0_command_header0_allowed_high = 0;
-        11: sequencer0_command_header0_allowed_high = 0;
-        12: sequencer0_command_header0_allowed_high = 0;
-        13: sequencer0_command_header0_allowed_high = 0;
-        14: sequencer0_command_header0_allowed_high = 0;
-        default: sequencer0_command_header0_allowed_high = 0;
-    endcase
-end
-
-
-always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup8_look_up
-    case (fifo_dout[32-1:28])
-        0: sequencer0_command_header0_allowed_low = 0;
-        1: sequencer0_command_header0_allowed_low = 0;
-        2: sequencer0_command_header0_allowed_low = 65535;
-        3: sequencer0_command_header0_allowed_low = 0;
-        4: sequencer0_command_header0_allowed_low = 15;
-        5: sequencer0_command_header0_allowed_low = 0;
-        6: sequencer0_command_header0_allowed_low = 65535;
-        7: sequencer0_command_header0_allowed_low = 0;
-        8: sequencer0_command_header0_allowed_low = 0;
-        9: sequencer0_command_header0_allowed_low = 0;
-        10: sequencer0_command_header0_allowed_low = 0;
-        11: sequencer0_command_header0_allowed_low = 0;
-        12: sequencer0_command_header0_allowed_low = 0;
-        13: sequencer0_command_header0_allowed_low = 0;
-        14: sequencer0_command_header0_allowed_low = 0;
-        default: sequencer0_command_header0_allowed_low = 0;
-    endcase
-end
-
-
-always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup9_look_up
+always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup7_look_up
     case (fifo_dout[26-1:20])
         0: sequencer0_command_header0_ones = 0;
         1: sequencer0_command_header0_ones = 1;
@@ -3867,7 +3894,7 @@ always @(fifo_dout[26-1:20]) begin: sequencer0_command_header0__lookup9_look_up
 end
 
 
-always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_header0_has_axes, sequencer0_command_header0_ones, sequencer0_command_header0_allowed_high, sequencer0_command_header0_allowed_low, sequencer0_command_header0_lead_count, sequencer0_command_header0_fixed_count) begin: sequencer0_command_header0_frame
+always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_header0_has_axes, sequencer0_command_header0_ones, sequencer0_command_header0_lead_count, sequencer0_command_header0_fixed_count) begin: sequencer0_command_header0_frame
     sequencer0_arriving_operands = sequencer0_command_header0_fixed_count;
     if (sequencer0_command_header0_has_axes) begin
         if ((fifo_dout[26-1:20] == 0)) begin
@@ -3877,17 +3904,13 @@ always @(sequencer0_command_header0_zero_count, fifo_dout, sequencer0_command_he
             sequencer0_arriving_operands = ((sequencer0_command_header0_fixed_count + sequencer0_command_header0_lead_count) + sequencer0_command_header0_ones);
         end
     end
-    sequencer0_arriving_reserved = (((fifo_dout[32-1:16] & (~sequencer0_command_header0_allowed_high)) != 0) || ((fifo_dout[16-1:0] & (~sequencer0_command_header0_allowed_low)) != 0));
 end
 
 
 always @(fifo_dout) begin: sequencer0_command_header0_check_axes
     sequencer0_arriving_out_of_range = 1'b0;
-    if ((fifo_dout[32-1:28] == 1)) begin
+    if (((fifo_dout[32-1:28] == 1) || (fifo_dout[32-1:28] == 3))) begin
         sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] & 60) != 0);
-    end
-    else if ((fifo_dout[32-1:28] == 3)) begin
-        sequencer0_arriving_out_of_range = ((fifo_dout[26-1:20] != 0) && (fifo_dout[26-1:20] != 3));
     end
     else if ((fifo_dout[32-1:28] == 2)) begin
         sequencer0_arriving_out_of_range = ((fifo_dout[16-1:13] >= 2) || (fifo_dout[20-1:17] >= 2) || ((fifo_dout[16-1:13] == fifo_dout[20-1:17]) && (fifo_dout[16-1:13] != 0)) || (fifo_dout[26-1:20] != 0) || (1'b1 && (fifo_dout[16-1:13] != 0)));
@@ -3897,7 +3920,7 @@ end
 
 always @(fifo_dout) begin: sequencer0_command_header0_slots
     sequencer0_arriving_slots = 15;
-    if ((fifo_dout[32-1:28] == 1)) begin
+    if (((fifo_dout[32-1:28] == 1) || (fifo_dout[32-1:28] == 3))) begin
         if ((fifo_dout[26-1:20] == 0)) begin
             sequencer0_arriving_slots = 3;
         end
@@ -3906,6 +3929,192 @@ always @(fifo_dout) begin: sequencer0_command_header0_slots
         end
     end
 end
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class0_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 0;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 0;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class0_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class0_flag = (sequencer0_command_header0__reserved_bits0__reserved_class0_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class0_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class1_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 0;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class1_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class1_flag = (sequencer0_command_header0__reserved_bits0__reserved_class1_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class1_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class2_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 0;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class2_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class2_flag = (sequencer0_command_header0__reserved_bits0__reserved_class2_refusing && (fifo_dout[16] != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class3_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class3_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class3_flag = (sequencer0_command_header0__reserved_bits0__reserved_class3_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class3_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class4_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 0;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 0;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class4_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class4_flag = (sequencer0_command_header0__reserved_bits0__reserved_class4_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class4_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class5_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class5_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class5_flag = (sequencer0_command_header0__reserved_bits0__reserved_class5_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class5_members != 0));
+
+
+always @(fifo_dout) begin: sequencer0_command_header0__reserved_bits0__reserved_class6_look_up
+    case (fifo_dout[32-1:28])
+        0: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        1: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        2: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        3: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        4: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        5: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        6: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 0;
+        7: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        8: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        9: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        10: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        11: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        12: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        13: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        14: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+        default: sequencer0_command_header0__reserved_bits0__reserved_class6_refusing = 1;
+    endcase
+end
+
+
+
+assign sequencer0_command_header0__reserved_bits0__reserved_class6_flag = (sequencer0_command_header0__reserved_bits0__reserved_class6_refusing && (sequencer0_command_header0__reserved_bits0__reserved_class6_members != 0));
+
+
+
+assign sequencer0_arriving_reserved = (sequencer0_command_header0__reserved_bits0_any_flag != 0);
 
 
 always @(posedge clock) begin: sequencer0_operand_register0_hold
@@ -3944,6 +4153,22 @@ end
 
 
 assign sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
+assign sequencer0_pulse_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 3) && (!sequencer_clear) && (!sequencer0_discard));
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_pulse_axes
+    if (reset == 0) begin
+        sequencer0_pulses_mask <= 3;
+    end
+    else begin
+        if (sequencer0_pulse_in) begin
+            sequencer0_pulses_mask <= 3;
+            if ((fifo_dout[20+:2] != 0)) begin
+                sequencer0_pulses_mask <= fifo_dout[20+:2];
+            end
+        end
+    end
+end
 
 
 
@@ -4042,17 +4267,18 @@ always @(fifo_empty, sequencer0_arriving_has_operands, sequencer0_state, sequenc
 end
 
 
-always @(sequencer0_word_due, sequencer_clear, sequencer0_slots_left, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
+always @(sequencer0_slots_left, sequencer0_word_due, sequencer_clear, sequencer0_discard, sequencer0_fetched) begin: sequencer0_operand_routing
     reg [4-1:0] taken;
     integer index;
     taken = 4'h0;
-    if ((sequencer0_word_due && (sequencer0_fetched != 0) && (!sequencer_clear) && (!sequencer0_discard))) begin
-        for (index=4-1; index>=0; index=index-1) begin
-            if (sequencer0_slots_left[index]) begin
-                taken = 0;
-                taken[index] = 1;
-            end
+    for (index=4-1; index>=0; index=index-1) begin
+        if (sequencer0_slots_left[index]) begin
+            taken = 0;
+            taken[index] = 1;
         end
+    end
+    if (((!sequencer0_word_due) || (sequencer0_fetched == 0) || sequencer_clear || sequencer0_discard)) begin
+        taken = 0;
     end
     sequencer0_slot_taken = taken;
 end
@@ -5684,7 +5910,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
@@ -5697,13 +5923,13 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
-        direct_pulse0_command_load = (seq_load && pulse_source0_pulses_mask[0]);
+        direct_pulse0_command_load = (seq_load && sequencer0_pulses_mask[0]);
         direct_pulse0_command_count = sequencer0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, pulse_source0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
@@ -5716,7 +5942,7 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
-        direct_pulse1_command_load = (seq_load && pulse_source0_pulses_mask[1]);
+        direct_pulse1_command_load = (seq_load && sequencer0_pulses_mask[1]);
         direct_pulse1_command_count = sequencer0_pulses_count_y;
     end
 end

@@ -451,11 +451,15 @@ wire [31:0] card1_card_core1_regs_fifo2_reg_word89_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word89_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown;
+wire card1_card_core1_regs_fifo2_reg_word90_in_block_read;
+wire card1_card_core1_regs_fifo2_reg_word90_in_block_write;
 wire card1_card_core1_regs_fifo2_reg_word90_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word90_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word90_chain_out_data;
 wire card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown;
+wire card1_card_core1_regs_fifo2_reg_word91_in_block_read;
+wire card1_card_core1_regs_fifo2_reg_word91_in_block_write;
 wire card1_card_core1_regs_fifo2_reg_word91_mine;
 wire [31:0] card1_card_core1_regs_fifo2_reg_word91_shown_wide;
 reg [31:0] card1_card_core1_regs_fifo2_reg_word91_chain_out_data;
@@ -928,6 +932,8 @@ reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
+wire card1_card_core1_regs_fifo2_sequencer2_pulse_in;
+reg [1:0] card1_card_core1_regs_fifo2_sequencer2_pulses_mask;
 wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
 wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
@@ -935,7 +941,7 @@ reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_slots;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_known;
-reg card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
+wire card1_card_core1_regs_fifo2_sequencer2_arriving_reserved;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_start;
 reg card1_card_core1_regs_fifo2_sequencer2_dda_done;
@@ -953,13 +959,32 @@ reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ys;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_xe;
 reg signed [23:0] card1_card_core1_regs_fifo2_sequencer2_dda_ye;
 reg [15:0] card1_card_core1_regs_fifo2_sequencer2_mark_tag;
-reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high;
-reg [15:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
 reg card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_ones;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count;
+wire [6:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag;
+wire [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_flag;
+wire [11:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_flag;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_flag;
+wire [2:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_flag;
+wire [5:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_flag;
+wire [1:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag;
+wire [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members;
+reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
 wire card1_card_core1_regs_fifo2_feed_rate2_advancing;
@@ -1122,7 +1147,6 @@ reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
-wire [1:0] card1_card_core1_regs_fifo2_pulse_source4_pulses_mask;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
@@ -1331,7 +1355,6 @@ assign card1_card_core1_regs_fifo2_reg_word118_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word120_set_mine = 1'd0;
 assign card1_card_core1_regs_fifo2_machine_guard2_lagging = 1'd0;
 assign card1_card_core1_regs_fifo2_machine_guard2_lagging_axis = 3'd0;
-assign card1_card_core1_regs_fifo2_pulse_source4_pulses_mask = 2'd3;
 assign card1_card_core1_regs_fifo2_status_words2_words_index_fired = 1'd0;
 assign card1_card_core1_regs_fifo2_status_words2_words_probe_fired = 1'd0;
 
@@ -1380,6 +1403,44 @@ assign card1_card_core1_regs_fifo2_direct_busy[1] = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_direct_busy[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
 assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[6] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[5] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[4] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[3] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[2] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[1] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[0] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag;
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[3] = card1_card_core1_regs_fifo2_fifo_dout[0];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[2] = card1_card_core1_regs_fifo2_fifo_dout[1];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[1] = card1_card_core1_regs_fifo2_fifo_dout[2];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members[0] = card1_card_core1_regs_fifo2_fifo_dout[3];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[11] = card1_card_core1_regs_fifo2_fifo_dout[4];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[10] = card1_card_core1_regs_fifo2_fifo_dout[5];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[9] = card1_card_core1_regs_fifo2_fifo_dout[6];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[8] = card1_card_core1_regs_fifo2_fifo_dout[7];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[7] = card1_card_core1_regs_fifo2_fifo_dout[8];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[6] = card1_card_core1_regs_fifo2_fifo_dout[9];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[5] = card1_card_core1_regs_fifo2_fifo_dout[10];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[4] = card1_card_core1_regs_fifo2_fifo_dout[11];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[3] = card1_card_core1_regs_fifo2_fifo_dout[12];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[2] = card1_card_core1_regs_fifo2_fifo_dout[13];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[1] = card1_card_core1_regs_fifo2_fifo_dout[14];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members[0] = card1_card_core1_regs_fifo2_fifo_dout[15];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members[2] = card1_card_core1_regs_fifo2_fifo_dout[17];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members[1] = card1_card_core1_regs_fifo2_fifo_dout[18];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members[0] = card1_card_core1_regs_fifo2_fifo_dout[19];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[5] = card1_card_core1_regs_fifo2_fifo_dout[20];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[4] = card1_card_core1_regs_fifo2_fifo_dout[21];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[3] = card1_card_core1_regs_fifo2_fifo_dout[22];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[2] = card1_card_core1_regs_fifo2_fifo_dout[23];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[1] = card1_card_core1_regs_fifo2_fifo_dout[24];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members[0] = card1_card_core1_regs_fifo2_fifo_dout[25];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members[1] = card1_card_core1_regs_fifo2_fifo_dout[26];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members[0] = card1_card_core1_regs_fifo2_fifo_dout[27];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[3] = card1_card_core1_regs_fifo2_fifo_dout[28];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[2] = card1_card_core1_regs_fifo2_fifo_dout[29];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[1] = card1_card_core1_regs_fifo2_fifo_dout[30];
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members[0] = card1_card_core1_regs_fifo2_fifo_dout[31];
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_level;
 assign card1_card_core1_regs_fifo2_pulse_out2_levels[0] = card1_card_core1_regs_fifo2_pulse_out2_axis_x_level;
 assign card1_card_core1_regs_fifo2_pulse_out2_pulses[1] = card1_card_core1_regs_fifo2_pulse_out2_axis_y_pulse;
@@ -3814,7 +3875,7 @@ assign card1_card_core1_regs_fifo2_reg_word89_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word90_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_pci_slave2_pci_requests2_local_addr == 256));
+assign card1_card_core1_regs_fifo2_reg_word90_mine = ((card1_pci_slave2_pci_requests2_local_addr == 32) || (card1_card_core1_regs_fifo2_reg_word90_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 0)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word90_mine, card1_card_core1_regs_fifo2_reg_word90_shown_wide, card1_card_core1_regs_fifo2_reg_word89_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word90_read_chain
@@ -3836,7 +3897,7 @@ assign card1_card_core1_regs_fifo2_reg_word90_chain_out_clamped = card1_card_cor
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word91_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_pci_slave2_pci_requests2_local_addr == 320));
+assign card1_card_core1_regs_fifo2_reg_word91_mine = ((card1_pci_slave2_pci_requests2_local_addr == 36) || (card1_card_core1_regs_fifo2_reg_word91_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 0)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word91_mine, card1_card_core1_regs_fifo2_reg_word91_shown_wide, card1_card_core1_regs_fifo2_reg_word90_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word91_read_chain
@@ -4553,7 +4614,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_pci_slave2_pci_requests2_local_addr == 260));
+assign card1_card_core1_regs_fifo2_reg_word99_mine = ((card1_pci_slave2_pci_requests2_local_addr == 68) || (card1_card_core1_regs_fifo2_reg_word90_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 4)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word99_mine, card1_card_core1_regs_fifo2_reg_word99_shown_wide, card1_card_core1_regs_fifo2_reg_word98_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word99_read_chain
@@ -4571,7 +4632,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_shown_wide = {16'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_written_addr == 260));
+assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 68) || (card1_card_core1_regs_fifo2_reg_word90_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 4)));
 
 
 
@@ -4662,7 +4723,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_pci_slave2_pci_requests2_local_addr == 324));
+assign card1_card_core1_regs_fifo2_reg_word100_mine = ((card1_pci_slave2_pci_requests2_local_addr == 72) || (card1_card_core1_regs_fifo2_reg_word91_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 4)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word100_mine, card1_card_core1_regs_fifo2_reg_word100_shown_wide, card1_card_core1_regs_fifo2_reg_word99_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word100_read_chain
@@ -4680,7 +4741,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_shown_wide = {16'h0, card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_written_addr == 324));
+assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 72) || (card1_card_core1_regs_fifo2_reg_word91_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 4)));
 
 
 
@@ -4771,7 +4832,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_pci_slave2_pci_requests2_local_addr == 264));
+assign card1_card_core1_regs_fifo2_reg_word101_mine = ((card1_pci_slave2_pci_requests2_local_addr == 76) || (card1_card_core1_regs_fifo2_reg_word90_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 8)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_mine, card1_card_core1_regs_fifo2_reg_word101_shown_wide, card1_card_core1_regs_fifo2_reg_word100_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word101_read_chain
@@ -4789,7 +4850,7 @@ assign card1_card_core1_regs_fifo2_reg_word101_shown_wide = {8'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_written_addr == 264));
+assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 76) || (card1_card_core1_regs_fifo2_reg_word90_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 8)));
 
 
 
@@ -4841,7 +4902,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_pci_slave2_pci_requests2_local_addr == 328));
+assign card1_card_core1_regs_fifo2_reg_word102_mine = ((card1_pci_slave2_pci_requests2_local_addr == 80) || (card1_card_core1_regs_fifo2_reg_word91_in_block_read && (card1_pci_slave2_pci_requests2_local_addr[6-1:0] == 8)));
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_mine, card1_card_core1_regs_fifo2_reg_word102_shown_wide, card1_card_core1_regs_fifo2_reg_word101_chain_out_data) begin: card1_card_core1_regs_fifo2_reg_word102_read_chain
@@ -4859,7 +4920,7 @@ assign card1_card_core1_regs_fifo2_reg_word102_shown_wide = {8'h0, card1_card_co
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_written_addr == 328));
+assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_regs_fifo2_written_addr == 80) || (card1_card_core1_regs_fifo2_reg_word91_in_block_write && (card1_card_core1_regs_fifo2_written_addr[6-1:0] == 8)));
 
 
 
@@ -5920,6 +5981,16 @@ assign card1_card_core1_regs_fifo2_reg_word122_chain_out_clamped = card1_card_co
 
 
 
+assign card1_card_core1_regs_fifo2_reg_word90_in_block_read = (card1_pci_slave2_pci_requests2_local_addr[12-1:6] == 4);
+assign card1_card_core1_regs_fifo2_reg_word90_in_block_write = (card1_card_core1_regs_fifo2_written_addr[12-1:6] == 4);
+
+
+
+assign card1_card_core1_regs_fifo2_reg_word91_in_block_read = (card1_pci_slave2_pci_requests2_local_addr[12-1:6] == 5);
+assign card1_card_core1_regs_fifo2_reg_word91_in_block_write = (card1_card_core1_regs_fifo2_written_addr[12-1:6] == 5);
+
+
+
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
@@ -5927,7 +5998,7 @@ assign card1_card_core1_regs_fifo2_sequencer2_arriving_coord_fits = ((card1_card
 assign card1_card_core1_regs_fifo2_sequencer2_arriving_count_fits = ((card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 0) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:(24 - 1)] == 511));
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup16_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count = 0;
@@ -5949,7 +6020,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup17_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count = 2;
@@ -5971,7 +6042,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup18_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
@@ -5993,7 +6064,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup19_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes = 1;
@@ -6015,7 +6086,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup24_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup20_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_known = 1;
@@ -6037,7 +6108,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup25_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup21_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_moves = 1;
@@ -6059,7 +6130,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup26_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup22_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands = 1;
@@ -6081,51 +6152,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup27_look_up
-    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62449;
-        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62463;
-        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 62448;
-        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
-        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
-        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 61440;
-        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high = 0;
-    endcase
-end
-
-
-always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup28_look_up
-    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
-        0: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        1: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 65535;
-        3: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        4: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 15;
-        5: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        6: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 65535;
-        7: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        8: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        9: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        10: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        11: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        12: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        13: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        14: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-        default: card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low = 0;
-    endcase
-end
-
-
-always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup29_look_up
+always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__lookup23_look_up
     case (card1_card_core1_regs_fifo2_fifo_dout[26-1:20])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_ones = 1;
@@ -6195,7 +6222,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[26-1:20]) begin: card1_card_core1
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes, card1_card_core1_regs_fifo2_sequencer2_command_header2_ones, card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high, card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low, card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count, card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_frame
+always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card1_card_core1_regs_fifo2_fifo_dout, card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes, card1_card_core1_regs_fifo2_sequencer2_command_header2_ones, card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count, card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_frame
     card1_card_core1_regs_fifo2_sequencer2_arriving_operands = card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count;
     if (card1_card_core1_regs_fifo2_sequencer2_command_header2_has_axes) begin
         if ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] == 0)) begin
@@ -6205,17 +6232,13 @@ always @(card1_card_core1_regs_fifo2_sequencer2_command_header2_zero_count, card
             card1_card_core1_regs_fifo2_sequencer2_arriving_operands = ((card1_card_core1_regs_fifo2_sequencer2_command_header2_fixed_count + card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count) + card1_card_core1_regs_fifo2_sequencer2_command_header2_ones);
         end
     end
-    card1_card_core1_regs_fifo2_sequencer2_arriving_reserved = (((card1_card_core1_regs_fifo2_fifo_dout[32-1:16] & (~card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_high)) != 0) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:0] & (~card1_card_core1_regs_fifo2_sequencer2_command_header2_allowed_low)) != 0));
 end
 
 
 always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_check_axes
     card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = 1'b0;
-    if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1)) begin
+    if (((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3))) begin
         card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] & 60) != 0);
-    end
-    else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3)) begin
-        card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) && (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 3));
     end
     else if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 2)) begin
         card1_card_core1_regs_fifo2_sequencer2_arriving_out_of_range = ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] >= 2) || (card1_card_core1_regs_fifo2_fifo_dout[20-1:17] >= 2) || ((card1_card_core1_regs_fifo2_fifo_dout[16-1:13] == card1_card_core1_regs_fifo2_fifo_dout[20-1:17]) && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)) || (card1_card_core1_regs_fifo2_fifo_dout[26-1:20] != 0) || (1'b1 && (card1_card_core1_regs_fifo2_fifo_dout[16-1:13] != 0)));
@@ -6225,7 +6248,7 @@ end
 
 always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2_slots
     card1_card_core1_regs_fifo2_sequencer2_arriving_slots = 15;
-    if ((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1)) begin
+    if (((card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) || (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3))) begin
         if ((card1_card_core1_regs_fifo2_fifo_dout[26-1:20] == 0)) begin
             card1_card_core1_regs_fifo2_sequencer2_arriving_slots = 3;
         end
@@ -6234,6 +6257,192 @@ always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fif
         end
     end
 end
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class15_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class16_refusing && (card1_card_core1_regs_fifo2_fifo_dout[16] != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class17_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class18_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class19_members != 0));
+
+
+always @(card1_card_core1_regs_fifo2_fifo_dout) begin: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_look_up
+    case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
+        0: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        1: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        3: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        4: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        5: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        6: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 0;
+        7: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        8: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        9: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        10: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        11: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        12: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        13: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        14: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+        default: card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing = 1;
+    endcase
+end
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing && (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members != 0));
+
+
+
+assign card1_card_core1_regs_fifo2_sequencer2_arriving_reserved = (card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag != 0);
 
 
 always @(posedge clock) begin: card1_card_core1_regs_fifo2_sequencer2_operand_register8_hold
@@ -6272,6 +6481,22 @@ end
 
 
 assign card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+assign card1_card_core1_regs_fifo2_sequencer2_pulse_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_pulse_axes
+    if (reset == 0) begin
+        card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= 3;
+    end
+    else begin
+        if (card1_card_core1_regs_fifo2_sequencer2_pulse_in) begin
+            card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= 3;
+            if ((card1_card_core1_regs_fifo2_fifo_dout[20+:2] != 0)) begin
+                card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= card1_card_core1_regs_fifo2_fifo_dout[20+:2];
+            end
+        end
+    end
+end
 
 
 
@@ -6370,17 +6595,18 @@ always @(card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_seq
 end
 
 
-always @(card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
+always @(card1_card_core1_regs_fifo2_sequencer2_slots_left, card1_card_core1_regs_fifo2_sequencer2_word_due, card1_card_core1_regs_fifo2_sequencer_clear, card1_card_core1_regs_fifo2_sequencer2_discard, card1_card_core1_regs_fifo2_sequencer2_fetched) begin: card1_card_core1_regs_fifo2_sequencer2_operand_routing
     reg [4-1:0] taken;
     integer index;
     taken = 4'h0;
-    if ((card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched != 0) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard))) begin
-        for (index=4-1; index>=0; index=index-1) begin
-            if (card1_card_core1_regs_fifo2_sequencer2_slots_left[index]) begin
-                taken = 0;
-                taken[index] = 1;
-            end
+    for (index=4-1; index>=0; index=index-1) begin
+        if (card1_card_core1_regs_fifo2_sequencer2_slots_left[index]) begin
+            taken = 0;
+            taken[index] = 1;
         end
+    end
+    if (((!card1_card_core1_regs_fifo2_sequencer2_word_due) || (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) || card1_card_core1_regs_fifo2_sequencer_clear || card1_card_core1_regs_fifo2_sequencer2_discard)) begin
+        taken = 0;
     end
     card1_card_core1_regs_fifo2_sequencer2_slot_taken = taken;
 end
@@ -8012,7 +8238,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -8025,13 +8251,13 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word101__store70_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[0]);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_pulses_mask[0]);
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_pulse_source4_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -8044,7 +8270,7 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word102__store71_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_pulse_source4_pulses_mask[1]);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_pulses_mask[1]);
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
     end
 end

@@ -20,8 +20,8 @@
   ITERATIONS still ends every axis on its end point (the helix then leads
   or lags the arc).
 
-``check_move`` holds the card's RANGE rules of the N-axis form; the
-iterators apply it, and ``plan_arc`` (``models/dda_plan.py``) the arc's own.
+``check_move`` holds the card's RANGE rules of the N-axis form
+(``check_pulse`` those of a PULSE's axes); the iterators apply it, and ``plan_arc`` (``models/dda_plan.py``) the arc's own.
 ``iterations_left_bound`` (``models/dda_model.py``) bounds the iterations a
 ``MoveIterator`` has left: the largest count of steps an axis has left.
 """
@@ -106,6 +106,14 @@ def check_move(command, axes=MAX_AXES, coord_width=24):
     for axis, delta in enumerate(deltas):
         check_width(delta, coord_width, f"D{AXIS_NAMES[axis]}")
     return command
+
+
+def check_pulse(counts, axes=MAX_AXES):
+    """The counts of a PULSE (by axis, ``models.commands.PulseCommand.counts``) if a card
+    with ``axes`` axes takes them: every axis with a count is one of the card's, whatever
+    the mask, on two axes as on more (RANGE, docs/axes.md); ValueError else."""
+    _check_axes(counts, axes, "PULSE")
+    return counts
 
 
 def _check_axes(values, axes, what):

@@ -5,7 +5,7 @@ from models import registers as regmap
 from models.axes import AXIS_NAMES
 from models.dda_build import variants_choice
 from models.parameters import COORD_WIDTH, Build
-from rtl.interfaces import (AxesCommand, AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, EncoderRegisters, FeedPort,
+from rtl.interfaces import (AliasBlock, AxesCommand, AxisBlock, AxisPulses, DdaPort, DirectPulseCommand, EncoderRegisters, FeedPort,
                             FifoRead, Homing,
                             InputConditioning, LocalBus, MachineGuard, MarkPort, MotorPins, PulseCommand, PulseControl,
                             RampSettings, ReadChain, RegisterBus, RegisterWord, SequencerControl, SetPort, StatusWords,
@@ -13,6 +13,7 @@ from rtl.interfaces import (AxesCommand, AxisBlock, AxisPulses, DdaPort, DirectP
 from rtl.machine.homing import homing
 from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
+from rtl.regs.alias_block import alias_block
 from rtl.regs.axis_block import axis_block
 from rtl.regs.direct_pulse import direct_pulse
 from rtl.regs.encoder_block import encoder_block, realign_on
@@ -116,8 +117,13 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     chain = [ReadChain() for _ in range(len(specs) + 1)]
     register_bus = RegisterBus(len(local.addr), addr=local.addr, write_addr=written_addr, write=io_written,
                                byte_mask=written_mask, wdata=written_data)
-    # X's and Y's per-axis block offsets in BAR2: their BAR0 registers answer there too
-    aliases = {bar0: (bar2,) for bar2, bar0 in regmap.axis_aliases().items()}
+    # X's and Y's per-axis blocks in BAR2: their BAR0 registers answer there too, each block tested once
+    blocks = {}
+    aliases = {}
+    for bar2, bar0 in regmap.axis_aliases().items():
+        base = bar2 - (bar2 - regmap.AXIS_BLOCK_BASE) % regmap.AXIS_STRIDE
+        aliases[bar0] = dict(alias=blocks.setdefault(base, AliasBlock(base, regmap.AXIS_STRIDE)),
+                             alias_offset=bar2 - base)
 
     set_port, mark = SetPort(), MarkPort()
     # named at this level, as the formal harness (formal/props) and the waves know them
@@ -165,7 +171,8 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
                        fifo_empty, fifo_full, local.room, depth=fifo_depth)]
     for i, spec in enumerate(specs):
         units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
-                              chain_in=chain[i], chain_out=chain[i + 1], aliases=aliases.get(spec.offset, ())))
+                              chain_in=chain[i], chain_out=chain[i + 1], **aliases.get(spec.offset, {})))
+    units += [alias_block(register_bus, block_hit) for block_hit in blocks.values()]
     units.append(sequencer(clock, reset, fifo=FifoRead(dout=fifo_dout, empty=fifo_empty, pop=fifo_pop),
                            control=seq_control, dda=dda, axes_cmd=axes_cmd, pulses=pulses, set_port=set_port, mark=mark,
                            set_indices=tuple(regmap.SET_TARGETS)))

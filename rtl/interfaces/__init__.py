@@ -14,7 +14,7 @@ lines are 0 when asserted).
 from rtl.interfaces.bundle import axis_suffixes, card_reset, named
 from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, MACHINE_INPUTS, MARK_TAG_BITS, PULSE_COUNT_BITS, SET_INDEX_BITS,
                                  TIMING_BITS, ENCODER_PINS, AxisBlock, CommandHeader, DirectPulseCommand, FeedPort,
-                                 FifoRead, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
+                                 AliasBlock, FifoRead, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
                                  SequencerControl, SetPort, StatusWords, StepPositions, StepRequest, machine_inputs)
 from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxesCommand, AxisPulses, DdaMove, DdaPlan, DdaPort,
                                 DdaRoot, DdaStep, LinearPort, SetupControl, SetupSequence, axis_index_bits)
@@ -33,7 +33,7 @@ __all__ = [
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
     "PULSE_COUNT_BITS", "TIMING_BITS", "AxisBlock", "CommandHeader", "FifoRead", "SequencerControl", "PulseCommand",
     "SetPort",
-    "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
+    "AliasBlock", "MarkPort", "RegisterBus", "RegisterWord", "ReadChain", "PulseControl", "StepPositions",
     "RampSettings", "FeedPort", "DirectPulseCommand", "StepRequest", "StatusWords", "INPUT_ESTOP", "machine_inputs",
     "ENCODER_PINS", "EncoderPins", "EncoderPort", "EncoderRegisters", "Timestamp",
     "FollowingErrorPort", "ProbePort"

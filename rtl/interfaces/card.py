@@ -190,6 +190,21 @@ class RegisterBus:
                write=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]), wdata=Signal(intbv(0)[32:]))
 
 
+class AliasBlock:
+    """An axis block of BAR2 whose registers are BAR0's (X's, Y's:
+    ``models.registers.axis_aliases``), decoded once for all of them by
+    ``rtl/regs/alias_block.py``: ``read`` (``RegisterBus.addr`` is in the
+    block) and ``write`` (``write_addr`` is); ``base`` (its first byte
+    offset) and ``size`` (bytes, a power of two: the registers compare the
+    address's low bits with their offset in the block)."""
+
+    def __init__(self, base, size):
+        if size & (size - 1) or base % size:
+            raise ValueError(f"an alias block of {size} bytes at {base:#x} is not aligned to a power of two")
+        self.base, self.size = base, size
+        self.read, self.write = Signal(bool(0)), Signal(bool(0))
+
+
 class RegisterWord:
     """One function register's signals to the hardware, as wide as the
     register ``spec`` (a ``models.registers.Register``): the hardware drives

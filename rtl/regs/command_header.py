@@ -42,13 +42,12 @@ def command_header(word, header):
     (``header.axes``) lacks; an ARC plane axis it lacks, or U_AXIS = V_AXIS
     other than 0/0, or on a card of two axes a plane other than X, Y; a HELIX
     axis the card lacks or that is u or v (on a card of two axes every HELIX
-    axis); a PULSE axis the card lacks (on a card of two axes a PULSE with
-    AXES other than 0 or X and Y).  The rules on a helix's operands are the
+    axis); a PULSE axis the card lacks.  The rules on a helix's operands are the
     sequencer's (``rtl/regs/axis_operands.py``).  The plane ``u``, ``v``:
     U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: the operand
     registers its operands go to (the sequencer puts each into the lowest
-    slot left): on a card of two axes a LINE's axes (0: X and Y), all ones
-    otherwise; on more axes XS .. YE in slots 0..3, ITERATIONS in 4 and an
+    slot left): on a card of two axes a LINE's or PULSE's axes (0: X and
+    Y), all ones otherwise; on more axes XS .. YE in slots 0..3, ITERATIONS in 4 and an
     axis i's displacement or count in 5 + i (``axis_operands``).
 
         word      ==X=ARC hdr=X=XS=X=YS=X ...
@@ -71,8 +70,6 @@ def command_header(word, header):
     zero_mask = opcode_rom(_zero_mask_operands)
     lead = opcode_rom(lambda op: len(op.axis_operands.lead) if op.axis_operands else 0)
     some = opcode_rom(lambda op: int(_fewest_operands(op) > 0))
-    mask_high = opcode_rom(lambda op: op.axis_header_mask >> 16)
-    mask_low = opcode_rom(lambda op: op.axis_header_mask & 0xFFFF)
     code = {op.name: op.code for op in isa.OPCODES}
     line_op, arc_op, pulse_op = code["LINE"], code["ARC"], code["PULSE"]
     index_bits = len(header.u)
@@ -89,11 +86,9 @@ def command_header(word, header):
 
     fixed_count, zero_count, lead_count, ones = (Signal(intbv(0)[4:]) for _ in range(4))
     has_axes = Signal(bool(0))
-    allowed_high, allowed_low = Signal(intbv(0)[16:]), Signal(intbv(0)[16:])
     lookups = [_lookup(word(32, isa.OPCODE_LSB), rom, signal)
                for rom, signal in ((fixed, fixed_count), (zero_mask, zero_count), (lead, lead_count),
-                                   (has_mask, has_axes), (known, header.known), (moves, header.moves), (some, header.has_operands),
-                                   (mask_high, allowed_high), (mask_low, allowed_low))]
+                                   (has_mask, has_axes), (known, header.known), (moves, header.moves), (some, header.has_operands))]
     lookups.append(_lookup(word(mask_msb, mask_lsb), ones_in, ones))
 
     @always_comb
@@ -104,16 +99,13 @@ def command_header(word, header):
                 header.operands.next = fixed_count + zero_count
             else:
                 header.operands.next = fixed_count + lead_count + ones
-        header.reserved.next = (word[32:16] & ~allowed_high) != 0 or (word[16:] & ~allowed_low) != 0
 
     if xy_only:   # a card of two axes turns arcs in X, Y only: no plane to read, no helix
         @always_comb
         def check_axes():
             header.out_of_range.next = False
-            if word[32:isa.OPCODE_LSB] == line_op:
+            if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
                 header.out_of_range.next = (word[mask_msb:mask_lsb] & beyond) != 0
-            elif word[32:isa.OPCODE_LSB] == pulse_op:
-                header.out_of_range.next = word[mask_msb:mask_lsb] != 0 and word[mask_msb:mask_lsb] != XY_MASK
             elif word[32:isa.OPCODE_LSB] == arc_op:
                 header.out_of_range.next = (word[u_msb:u_lsb] >= axes or word[v_msb:v_lsb] >= axes
                                             or (word[u_msb:u_lsb] == word[v_msb:v_lsb] and word[u_msb:u_lsb] != 0)
@@ -123,7 +115,7 @@ def command_header(word, header):
         @always_comb
         def slots():
             header.slots.next = all_slots
-            if word[32:isa.OPCODE_LSB] == line_op:
+            if word[32:isa.OPCODE_LSB] == line_op or word[32:isa.OPCODE_LSB] == pulse_op:
                 if word[mask_msb:mask_lsb] == 0:
                     header.slots.next = XY_MASK
                 else:
@@ -171,7 +163,50 @@ def command_header(word, header):
                           for index in range(64))
         checks = [check_axes_n, slots_n, plane, helix_plane,
                   _lookup(ConcatSignal(word(v_msb, v_lsb), word(u_msb, u_lsb)), plane_rom, plane_axes)]
-    return lookups, frame, checks
+    return lookups, frame, checks, _reserved_bits(word, header.reserved)
+
+
+@block
+def _reserved_bits(word, reserved):
+    """``reserved``: ``word`` read as a header sets a bit its opcode's form does not
+    have (``axis_header_mask``; every bit but the opcode's own for an unknown one).
+
+    The bits are grouped by the opcodes that allow them (the header's bit
+    classes: the opcode, BLEND, LINE's and PULSE's AXES, ARC's fields, SET's
+    INDEX, MARK's TAG, never-used bits), so the test is one OR of each class's
+    bits and one opcode lookup per class instead of one per bit."""
+    allowed_by = tuple(opcode_rom(lambda op, bit=bit: (op.axis_header_mask >> bit) & 1) for bit in range(32))
+    classes = {}
+    for bit, allowed in enumerate(allowed_by):
+        classes.setdefault(allowed, []).append(bit)
+    flags = [Signal(bool(0)) for _ in classes]
+    units = [_reserved_class(word, bits, tuple(1 - a for a in allowed), flag)
+             for (allowed, bits), flag in zip(classes.items(), flags)]
+    any_flag = ConcatSignal(*flags) if len(flags) > 1 else flags[0]
+
+    @always_comb
+    def either():
+        reserved.next = any_flag != 0
+
+    return units, either
+
+
+@block
+def _reserved_class(word, bits, refused, flag):
+    """``flag``: ``word`` sets one of ``bits`` (bit indices) and its opcode refuses them
+    (``refused``, by opcode)."""
+    refusing = Signal(bool(0))
+    members = ConcatSignal(*(word(bit) for bit in bits)) if len(bits) > 1 else word(bits[0])
+
+    @always_comb
+    def look_up():
+        refusing.next = refused[word[32:isa.OPCODE_LSB]]
+
+    @always_comb
+    def test():
+        flag.next = refusing and members != 0
+
+    return look_up, test
 
 
 @block

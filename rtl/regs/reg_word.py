@@ -6,7 +6,7 @@ from rtl.interfaces import ReadChain, RegisterBus, RegisterWord, SetPort, card_r
 
 
 @block
-def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=()):
+def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, alias=None, alias_offset=0):
     """The register ``word.spec`` (a ``models.registers.Register``) on the register bus.
 
     Ports (``rtl/interfaces/``): ``bus`` (``RegisterBus``: ``addr`` of
@@ -31,9 +31,11 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     the same for every register of the width, so the registers share them.
     A SET register compares the bus's word and SET's value with its bounds
     each before it chooses (``_limit_either``): the compares of SET's value
-    are shared by the registers of one range.  Parameter: ``aliases``, more offsets the register
-    answers at, exactly as at its own (X's and Y's per-axis block offsets in
-    BAR2, ``models.registers.axis_aliases``).
+    are shared by the registers of one range.  Parameters: ``alias`` (an
+    ``AliasBlock``, or None) and ``alias_offset``: the register answers at
+    that offset in the block too, exactly as at its own (X's and Y's per-axis
+    blocks in BAR2, ``models.registers.axis_aliases``); the block's test is
+    made once for its registers (``rtl/regs/alias_block.py``).
 
         clock     _/~\\_/~\\_/~\\_
         bus.write _/~~~\\_______     bus.write_addr = spec.offset
@@ -42,9 +44,11 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
     """
     spec = word.spec
     width, offset = spec.width, spec.offset
-    if len(aliases) > 1:
-        raise ValueError(f"{spec.name}: one alias offset at most, not {aliases}")
-    alias = aliases[0] if aliases else None
+    if alias is not None and not 0 <= alias_offset < alias.size:
+        raise ValueError(f"{spec.name}: alias offset {alias_offset:#x} outside its {alias.size}-byte block")
+    low = (alias.size - 1).bit_length() if alias is not None else 0
+    in_block_read = alias.read if alias is not None else None
+    in_block_write = alias.write if alias is not None else None
     checked = spec.minimum is not None or spec.maximum is not None
     mine = Signal(bool(0))
     mine_write = Signal(bool(0))
@@ -76,11 +80,11 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, aliases=
 
     @always_comb
     def select_either():
-        mine.next = bus.addr == offset or bus.addr == alias
+        mine.next = bus.addr == offset or (in_block_read and bus.addr[low:] == alias_offset)
 
     @always_comb
     def select_write_either():
-        mine_write.next = bus.write_addr == offset or bus.write_addr == alias
+        mine_write.next = bus.write_addr == offset or (in_block_write and bus.write_addr[low:] == alias_offset)
 
     @always_comb
     def read_chain():

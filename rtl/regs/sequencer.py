@@ -2,6 +2,7 @@
 from myhdl import Signal, always_comb, always_seq, block, downrange, enum, intbv
 
 from models import instructions as isa
+from models.axes import XY_MASK
 from models.parameters import AXES, COORD_WIDTH
 from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl,
                             SetPort, card_reset)
@@ -25,15 +26,16 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     register while the current command runs; ``command_header`` frames it
     by the N-axis form (docs/axes.md) and each operand goes to the lowest
     operand register left of those the header names (two axes: a LINE's
-    its axes', the others are cleared, otherwise in order, so a LINE's
-    displacement of axis i is in register i; more axes: ``axis_operands``'
+    and a PULSE's its axes', a LINE's others are cleared, otherwise in
+    order, so a LINE's displacement or a PULSE's count of axis i is in
+    register i; more axes: ``axis_operands``'
     slots, XS .. YE, ITERATIONS, then axis i's displacement or count in
     register 5 + i).  Execute: LINE/ARC drive
     ``dda`` (a one-clock ``start`` with the operands and BLEND) as soon as
     the DDA is ``ready``, also while the move before still runs, so chained
     segments leave no gap; PULSE loads the direct pulse generators of its
-    axes (``pulses.load``, ``pulses.count_*``, ``pulses.mask``; X and Y on a
-    card of two axes) and waits while ``pulses.busy``;
+    axes (``pulses.load``, ``pulses.count_*``, ``pulses.mask``, taken with
+    its header: AXES, or X and Y for 0) and waits while ``pulses.busy``;
     DWELL counts clocks once the pulse outputs are quiet
     (``pulses.outputs_busy`` low: no step request pending and the last step
     has left the pins); SET gives a ``set_port.strobe`` with its index and
@@ -174,13 +176,15 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     @always_comb
     def operand_routing():
-        # the lowest register left takes an arriving operand word
+        # the lowest register left takes an arriving operand word; the loop runs whatever the
+        # condition, so its variable is assigned in every pass and no tool reads it as a latch
         taken = intbv(0)[slot_count:]
-        if word_due and fetched != 0 and not control.clear and not discard:
-            for index in downrange(slot_count):
-                if slots_left[index]:
-                    taken[:] = 0
-                    taken[index] = 1
+        for index in downrange(slot_count):
+            if slots_left[index]:
+                taken[:] = 0
+                taken[index] = 1
+        if not word_due or fetched == 0 or control.clear or discard:
+            taken[:] = 0
         slot_taken.next = taken
 
     @always_comb
@@ -353,18 +357,32 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
     fits = [fits_width(fifo.dout, arriving_coord_fits, coord_width), fits_width(fifo.dout, arriving_count_fits, count_bits)]
     if axes == 2:
-        # a LINE header clears its axes' registers; the PULSE command's two-axis form; arcs in X, Y only
+        # a LINE header clears its axes' registers; a PULSE's counts in registers 0 (X) and 1 (Y), its
+        # axes taken with its header; arcs in X, Y only
+        pulse_in = Signal(bool(0))
+        mask_lsb = next(lsb for name, lsb, _, _ in isa.BY_NAME["PULSE"].axis_fields if name == "AXES")
+
         @always_comb
         def line_header():
             line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
                             and not control.clear and not discard)
+            pulse_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == pulse_op
+                             and not control.clear and not discard)
+
+        @always_seq(clock.posedge, reset=reset)
+        def pulse_axes():
+            # AXES 0 (the two-axis form) is X and Y; bits beyond Y are RANGE (command_header)
+            if pulse_in:
+                pulses.mask.next = XY_MASK
+                if fifo.dout[mask_lsb + axes:mask_lsb] != 0:
+                    pulses.mask.next = fifo.dout[mask_lsb + axes:mask_lsb]
 
         @always_comb
         def pulse_counts():
             pulses.count_x.next = operand_0[count_bits:].signed()
             pulses.count_y.next = operand_1[count_bits:].signed()
 
-        axis_units = [line_header, pulse_counts]
+        axis_units = [line_header, pulse_axes, pulse_counts]
     else:
         # the plane and a PULSE's mask, taken with the header; a LINE's or helix's displacement of axis i
         # and a PULSE's count of axis i in operand register AXIS_SLOT + i; a helix's RANGE rules

@@ -16,7 +16,7 @@ from models import instructions as isa
 from models import registers as regmap
 from models.axes import PLANES
 from models.commands import PulseCommand, command_words, decode_words
-from models.dda_axes import check_move, with_iterations
+from models.dda_axes import check_move, check_pulse, with_iterations
 from models.dda_plan import ArcCommand, AxesLineCommand
 from models.parameters import Build
 from rtl.card_core import card_core, card_core_ports
@@ -199,3 +199,27 @@ def test_three_axis_card_pulses_any_axis_mask():
                   for step in [1 if count > 0 else -1] * abs(count)]
         assert moves == wanted, f"axis {axis}"
     assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
+
+
+# PULSE with a one-axis mask on the card of two axes: X alone, Y alone, then both in the N-axis form
+TWO_AXIS_PULSES = (isa.encode("PULSE", 4, AXES=0b01) + isa.encode("PULSE", -3, AXES=0b10)
+                   + isa.encode("PULSE", -2, 5, AXES=0b11))
+
+
+@pytest.mark.parametrize("cosim", [
+    pytest.param(False, id="myhdl"),
+    pytest.param(True, id="icarus", marks=pytest.mark.slow(reason="the generated Verilog of the same scenario (10 s): "
+                                                                  "the default suite is at its ten minutes"))])
+def test_two_axis_card_pulses_any_mask_of_its_axes(cosim):
+    # golden: the counts as the decoder reads the stream (models.commands), which the model of
+    # the card's RANGE rules takes on two axes (models.dda_axes.check_pulse)
+    commands = decode_words(TWO_AXIS_PULSES)
+    assert [check_pulse(c.counts, axes=2) for c in commands] == [(4, 0), (0, -3), (-2, 5)]
+    results = {}
+    points = run_axes(f"card_axes_two_pulses_{'icarus' if cosim else 'myhdl'}", 2,
+                      motion(TWO_AXIS_PULSES, results), cosim)
+    assert regmap.field_value("STATUS", "ERROR", results["status"]) == 0
+    for axis in range(2):
+        moves = [b[axis] - a[axis] for a, b in zip(points, points[1:]) if b[axis] != a[axis]]
+        wanted = [step for c in commands for step in [1 if c.counts[axis] > 0 else -1] * abs(c.counts[axis])]
+        assert moves == wanted, f"axis {axis}"
