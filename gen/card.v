@@ -909,10 +909,7 @@ reg [2:0] card_core0_regs_fifo1_sequencer1_state;
 reg card_core0_regs_fifo1_sequencer1_state_over;
 reg card_core0_regs_fifo1_sequencer1_variant_built;
 reg card_core0_regs_fifo1_sequencer1_word_due;
-wire card_core0_regs_fifo1_sequencer1_pulse_in;
-reg [1:0] card_core0_regs_fifo1_sequencer1_pulses_mask;
-wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_x;
-wire signed [23:0] card_core0_regs_fifo1_sequencer1_pulses_count_y;
+wire card_core0_regs_fifo1_sequencer1_header_in;
 reg card_core0_regs_fifo1_sequencer1_arriving_has_operands;
 reg card_core0_regs_fifo1_sequencer1_arriving_moves;
 reg [3:0] card_core0_regs_fifo1_sequencer1_arriving_operands;
@@ -962,6 +959,10 @@ reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_c
 wire card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_flag;
 wire [3:0] card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_members;
 reg card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class13_refusing;
+wire card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulse_in;
+reg [1:0] card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask;
+wire signed [23:0] card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x;
+wire signed [23:0] card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y;
 wire card_core0_regs_fifo1_feed_rate1_above;
 wire card_core0_regs_fifo1_feed_rate1_above_floor;
 wire card_core0_regs_fifo1_feed_rate1_advancing;
@@ -5649,19 +5650,23 @@ end
 
 
 
-assign card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
-assign card_core0_regs_fifo1_sequencer1_pulse_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
+assign card_core0_regs_fifo1_sequencer1_header_in = (card_core0_regs_fifo1_sequencer1_word_due && (card_core0_regs_fifo1_sequencer1_fetched == 0) && (!card_core0_regs_fifo1_sequencer_clear) && (!card_core0_regs_fifo1_sequencer1_discard));
 
 
-always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_pulse_axes
+
+assign card_core0_regs_fifo1_sequencer1_line_in = (card_core0_regs_fifo1_sequencer1_header_in && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 1));
+assign card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulse_in = (card_core0_regs_fifo1_sequencer1_header_in && (card_core0_regs_fifo1_fifo_dout[32-1:28] == 3));
+
+
+always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulse_axes
     if (reset == 0) begin
-        card_core0_regs_fifo1_sequencer1_pulses_mask <= 3;
+        card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask <= 3;
     end
     else begin
-        if (card_core0_regs_fifo1_sequencer1_pulse_in) begin
-            card_core0_regs_fifo1_sequencer1_pulses_mask <= 3;
+        if (card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulse_in) begin
+            card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask <= 3;
             if ((card_core0_regs_fifo1_fifo_dout[20+:2] != 0)) begin
-                card_core0_regs_fifo1_sequencer1_pulses_mask <= card_core0_regs_fifo1_fifo_dout[20+:2];
+                card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask <= card_core0_regs_fifo1_fifo_dout[20+:2];
             end
         end
     end
@@ -5669,8 +5674,8 @@ end
 
 
 
-assign card_core0_regs_fifo1_sequencer1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
-assign card_core0_regs_fifo1_sequencer1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
+assign card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x = $signed(card_core0_regs_fifo1_sequencer1_operand_0[24-1:0]);
+assign card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y = $signed(card_core0_regs_fifo1_sequencer1_operand_1[24-1:0]);
 
 
 always @(card_core0_regs_fifo1_sequencer1_opcode) begin: card_core0_regs_fifo1_sequencer1_lookup_coords
@@ -7407,7 +7412,7 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -7420,13 +7425,13 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
         card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word60__store42_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_pulses_mask[0]);
-        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_x;
+        card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask[0]);
+        card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
@@ -7439,8 +7444,8 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
         card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word61__store43_word_value);
     end
     else begin
-        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_pulses_mask[1]);
-        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_pulses_count_y;
+        card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask[1]);
+        card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y;
     end
 end
 

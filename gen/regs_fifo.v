@@ -818,10 +818,7 @@ reg [2:0] sequencer0_state;
 reg sequencer0_state_over;
 reg sequencer0_variant_built;
 reg sequencer0_word_due;
-wire sequencer0_pulse_in;
-reg [1:0] sequencer0_pulses_mask;
-wire signed [23:0] sequencer0_pulses_count_x;
-wire signed [23:0] sequencer0_pulses_count_y;
+wire sequencer0_header_in;
 reg sequencer0_arriving_has_operands;
 reg sequencer0_arriving_moves;
 reg [3:0] sequencer0_arriving_operands;
@@ -857,6 +854,10 @@ reg sequencer0_command_header0__reserved_bits0__reserved_class5_refusing;
 wire sequencer0_command_header0__reserved_bits0__reserved_class6_flag;
 wire [3:0] sequencer0_command_header0__reserved_bits0__reserved_class6_members;
 reg sequencer0_command_header0__reserved_bits0__reserved_class6_refusing;
+wire sequencer0_two_axis_operands0_pulse_in;
+reg [1:0] sequencer0_two_axis_operands0_pulses_mask;
+wire signed [23:0] sequencer0_two_axis_operands0_pulses_count_x;
+wire signed [23:0] sequencer0_two_axis_operands0_pulses_count_y;
 wire feed_rate0_above;
 wire feed_rate0_above_floor;
 wire feed_rate0_advancing;
@@ -4152,19 +4153,23 @@ end
 
 
 
-assign sequencer0_line_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 1) && (!sequencer_clear) && (!sequencer0_discard));
-assign sequencer0_pulse_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (fifo_dout[32-1:28] == 3) && (!sequencer_clear) && (!sequencer0_discard));
+assign sequencer0_header_in = (sequencer0_word_due && (sequencer0_fetched == 0) && (!sequencer_clear) && (!sequencer0_discard));
 
 
-always @(posedge clock, negedge reset) begin: sequencer0_pulse_axes
+
+assign sequencer0_line_in = (sequencer0_header_in && (fifo_dout[32-1:28] == 1));
+assign sequencer0_two_axis_operands0_pulse_in = (sequencer0_header_in && (fifo_dout[32-1:28] == 3));
+
+
+always @(posedge clock, negedge reset) begin: sequencer0_two_axis_operands0_pulse_axes
     if (reset == 0) begin
-        sequencer0_pulses_mask <= 3;
+        sequencer0_two_axis_operands0_pulses_mask <= 3;
     end
     else begin
-        if (sequencer0_pulse_in) begin
-            sequencer0_pulses_mask <= 3;
+        if (sequencer0_two_axis_operands0_pulse_in) begin
+            sequencer0_two_axis_operands0_pulses_mask <= 3;
             if ((fifo_dout[20+:2] != 0)) begin
-                sequencer0_pulses_mask <= fifo_dout[20+:2];
+                sequencer0_two_axis_operands0_pulses_mask <= fifo_dout[20+:2];
             end
         end
     end
@@ -4172,8 +4177,8 @@ end
 
 
 
-assign sequencer0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
-assign sequencer0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
+assign sequencer0_two_axis_operands0_pulses_count_x = $signed(sequencer0_operand_0[24-1:0]);
+assign sequencer0_two_axis_operands0_pulses_count_y = $signed(sequencer0_operand_1[24-1:0]);
 
 
 always @(sequencer0_opcode) begin: sequencer0_lookup_coords
@@ -5910,7 +5915,7 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
@@ -5923,13 +5928,13 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
-        direct_pulse0_command_load = (seq_load && sequencer0_pulses_mask[0]);
-        direct_pulse0_command_count = sequencer0_pulses_count_x;
+        direct_pulse0_command_load = (seq_load && sequencer0_two_axis_operands0_pulses_mask[0]);
+        direct_pulse0_command_count = sequencer0_two_axis_operands0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
@@ -5942,8 +5947,8 @@ always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_ret
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
-        direct_pulse1_command_load = (seq_load && sequencer0_pulses_mask[1]);
-        direct_pulse1_command_count = sequencer0_pulses_count_y;
+        direct_pulse1_command_load = (seq_load && sequencer0_two_axis_operands0_pulses_mask[1]);
+        direct_pulse1_command_count = sequencer0_two_axis_operands0_pulses_count_y;
     end
 end
 

@@ -932,10 +932,7 @@ reg [2:0] card1_card_core1_regs_fifo2_sequencer2_state;
 reg card1_card_core1_regs_fifo2_sequencer2_state_over;
 reg card1_card_core1_regs_fifo2_sequencer2_variant_built;
 reg card1_card_core1_regs_fifo2_sequencer2_word_due;
-wire card1_card_core1_regs_fifo2_sequencer2_pulse_in;
-reg [1:0] card1_card_core1_regs_fifo2_sequencer2_pulses_mask;
-wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
-wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
+wire card1_card_core1_regs_fifo2_sequencer2_header_in;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_has_operands;
 reg card1_card_core1_regs_fifo2_sequencer2_arriving_moves;
 reg [3:0] card1_card_core1_regs_fifo2_sequencer2_arriving_operands;
@@ -985,6 +982,10 @@ reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__rese
 wire card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_flag;
 wire [3:0] card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_members;
 reg card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class20_refusing;
+wire card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulse_in;
+reg [1:0] card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask;
+wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x;
+wire signed [23:0] card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y;
 wire card1_card_core1_regs_fifo2_feed_rate2_above;
 wire card1_card_core1_regs_fifo2_feed_rate2_above_floor;
 wire card1_card_core1_regs_fifo2_feed_rate2_advancing;
@@ -6480,19 +6481,23 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
-assign card1_card_core1_regs_fifo2_sequencer2_pulse_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
+assign card1_card_core1_regs_fifo2_sequencer2_header_in = (card1_card_core1_regs_fifo2_sequencer2_word_due && (card1_card_core1_regs_fifo2_sequencer2_fetched == 0) && (!card1_card_core1_regs_fifo2_sequencer_clear) && (!card1_card_core1_regs_fifo2_sequencer2_discard));
 
 
-always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_pulse_axes
+
+assign card1_card_core1_regs_fifo2_sequencer2_line_in = (card1_card_core1_regs_fifo2_sequencer2_header_in && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 1));
+assign card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulse_in = (card1_card_core1_regs_fifo2_sequencer2_header_in && (card1_card_core1_regs_fifo2_fifo_dout[32-1:28] == 3));
+
+
+always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulse_axes
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= 3;
+        card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask <= 3;
     end
     else begin
-        if (card1_card_core1_regs_fifo2_sequencer2_pulse_in) begin
-            card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= 3;
+        if (card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulse_in) begin
+            card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask <= 3;
             if ((card1_card_core1_regs_fifo2_fifo_dout[20+:2] != 0)) begin
-                card1_card_core1_regs_fifo2_sequencer2_pulses_mask <= card1_card_core1_regs_fifo2_fifo_dout[20+:2];
+                card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask <= card1_card_core1_regs_fifo2_fifo_dout[20+:2];
             end
         end
     end
@@ -6500,8 +6505,8 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_sequencer2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
-assign card1_card_core1_regs_fifo2_sequencer2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
+assign card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_0[24-1:0]);
+assign card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y = $signed(card1_card_core1_regs_fifo2_sequencer2_operand_1[24-1:0]);
 
 
 always @(card1_card_core1_regs_fifo2_sequencer2_opcode) begin: card1_card_core1_regs_fifo2_sequencer2_lookup_coords
@@ -8238,7 +8243,7 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -8251,13 +8256,13 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word101__store70_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_pulses_mask[0]);
-        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_x;
+        card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask[0]);
+        card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
@@ -8270,8 +8275,8 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word102__store71_word_value);
     end
     else begin
-        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_pulses_mask[1]);
-        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_pulses_count_y;
+        card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask[1]);
+        card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y;
     end
 end
 

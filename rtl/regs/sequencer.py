@@ -2,14 +2,14 @@
 from myhdl import Signal, always_comb, always_seq, block, downrange, enum, intbv
 
 from models import instructions as isa
-from models.axes import XY_MASK
 from models.parameters import AXES, COORD_WIDTH
 from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl,
                             SetPort, card_reset)
 from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT, axis_operands
 from rtl.regs.command_header import command_header
 from rtl.regs.instruction_tables import OPERANDS_MAX, fits_width, header_field, opcode_rom, operand_mask
-from rtl.regs.operand_register import operand_register, signed_low
+from rtl.regs.operand_register import operand_register
+from rtl.regs.two_axis_operands import two_axis_operands
 
 
 @block
@@ -356,51 +356,31 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         control.motion_run.next = state == seq_t.S_MOTION
 
     fits = [fits_width(fifo.dout, arriving_coord_fits, coord_width), fits_width(fifo.dout, arriving_count_fits, count_bits)]
+    header_in = Signal(bool(0))   # a header word arrives and is kept (no clear drops it)
+
+    @always_comb
+    def arriving_header():
+        header_in.next = word_due and fetched == 0 and not control.clear and not discard
+
     if axes == 2:
-        # a LINE header clears its axes' registers; a PULSE's counts in registers 0 (X) and 1 (Y), its
-        # axes taken with its header; arcs in X, Y only
-        pulse_in = Signal(bool(0))
-        mask_lsb = next(lsb for name, lsb, _, _ in isa.BY_NAME["PULSE"].axis_fields if name == "AXES")
-
-        @always_comb
-        def line_header():
-            line_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == line_op
-                            and not control.clear and not discard)
-            pulse_in.next = (word_due and fetched == 0 and fifo.dout[32:isa.OPCODE_LSB] == pulse_op
-                             and not control.clear and not discard)
-
-        @always_seq(clock.posedge, reset=reset)
-        def pulse_axes():
-            # AXES 0 (the two-axis form) is X and Y; bits beyond Y are RANGE (command_header)
-            if pulse_in:
-                pulses.mask.next = XY_MASK
-                if fifo.dout[mask_lsb + axes:mask_lsb] != 0:
-                    pulses.mask.next = fifo.dout[mask_lsb + axes:mask_lsb]
-
-        @always_comb
-        def pulse_counts():
-            pulses.count_x.next = operand_0[count_bits:].signed()
-            pulses.count_y.next = operand_1[count_bits:].signed()
-
-        axis_units = [line_header, pulse_axes, pulse_counts]
+        axis_units = [two_axis_operands(clock, reset, fifo.dout, header_in, operands, pulses, line_in)]
     else:
         # the plane and a PULSE's mask, taken with the header; a LINE's or helix's displacement of axis i
         # and a PULSE's count of axis i in operand register AXIS_SLOT + i; a helix's RANGE rules
-        header_in, operand_in = Signal(bool(0)), Signal(bool(0))
+        operand_in = Signal(bool(0))
 
         @always_comb
-        def arriving_words():
-            header_in.next = word_due and fetched == 0 and not control.clear and not discard
+        def arriving_operand():
             operand_in.next = word_due and fetched != 0 and not control.clear and not discard
 
         @always_comb
         def field_checks():
             bad_fields.next = bad_axes or bad_helix
 
-        axis_units = [arriving_words, field_checks, axis_operands(clock, reset, fifo.dout, arriving, header_in, operand_in, fetched,
-                                                    operands, axes_cmd, pulses, clear_iterations, clear_axes,
-                                                    bad_helix)]
-    return (fits, reading, registers, axis_units, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
+        axis_units = [arriving_operand, field_checks,
+                      axis_operands(clock, reset, fifo.dout, arriving, header_in, operand_in, fetched, operands,
+                                    axes_cmd, pulses, clear_iterations, clear_axes, bad_helix)]
+    return (fits, reading, registers, arriving_header, axis_units, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
             operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
             dwell_count, present, report)
 
