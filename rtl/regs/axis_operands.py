@@ -1,5 +1,5 @@
 """What the sequencer of a card of more than two axes hands on from an N-axis command's operands."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK
@@ -53,7 +53,9 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
     line_op, arc_op, pulse_op = opcode_of["LINE"], opcode_of["ARC"], opcode_of["PULSE"]
     is_arc = Signal(bool(0))
     magnitude, arrived = Signal(intbv(0)[width:]), Signal(intbv(0)[width:])
-    comparing = Signal(bool(0))
+    comparing, steeper = Signal(bool(0)), Signal(bool(0))
+    # K + w for a negative arriving word w: below 0 when |w| > K
+    reach = Signal(intbv(0, min=-(1 << width), max=1 << (len(iterations) + 1)))
     deltas = [signed_low(operands[AXIS_SLOT + axis], axes_cmd.delta(axis)) for axis in range(axes)]
     counts = [signed_low(operands[AXIS_SLOT + axis], pulses.count(axis)) for axis in range(axes)]
 
@@ -75,6 +77,19 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
         else:
             magnitude.next = word[width:]
 
+    @always_comb
+    def helix_reach():
+        reach.next = iterations + word[width:].signed()
+
+    @always_comb
+    def helix_steeper():
+        # |the arriving word| > ITERATIONS, each sign by one comparison of the word itself
+        # (no negation in front of it: the word comes from the FIFO's block RAM late in the clock)
+        if word[width - 1]:
+            steeper.next = reach < 0
+        else:
+            steeper.next = word[width:] > iterations
+
     @always_seq(clock.posedge, reset=reset)
     def take_header():
         if header_in:
@@ -88,7 +103,7 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
                     pulses.mask.next = word[mask_lsb + axes:mask_lsb]
         elif operand_in and is_arc and position > AXIS_SLOT:
             # a helix displacement: ITERATIONS (taken before it) is not 0 and at least its magnitude
-            if iterations == 0 or concat(intbv(0)[len(iterations) - width:], magnitude) > iterations:
+            if iterations == 0 or steeper:
                 bad_helix.next = 1
 
     @always_seq(clock.posedge, reset=reset)
@@ -102,4 +117,5 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
         elif comparing and arrived > axes_cmd.largest:
             axes_cmd.largest.next = arrived
 
-    return deltas, counts, clearing, hand_on, arriving_magnitude, take_header, keep_largest
+    return (deltas, counts, clearing, hand_on, arriving_magnitude, helix_reach, helix_steeper, take_header,
+            keep_largest)

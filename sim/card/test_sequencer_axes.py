@@ -10,14 +10,19 @@ streams of LINEs (any axis mask, axes at rest, the coordinates' extremes)
 mixed with helical ARCs and PULSEs, whose larger operands must not leak
 into the next LINE, reach it from a FIFO that runs dry at random; at every
 start of a LINE, ``largest`` and each ``delta`` are compared with the
-command's own displacements.  On the MyHDL block and its Verilog in Icarus.
+command's own displacements.  The same bench checks the helix's RANGE rule
+at its edges (|displacement| against ITERATIONS, either sign), which the
+sequencer judges on the FIFO's word as it arrives.  On the MyHDL block and
+its Verilog in Icarus.
 """
 import random
 
 import pytest
 from myhdl import always, block
 
+from models import instructions as isa
 from models.commands import PulseCommand, stream_words
+from models.dda_axes import check_move
 from models.dda_plan import AxesLineCommand, ArcCommand
 from rtl.regs.sequencer import sequencer, sequencer_ports
 from sim.backends.clocking import clock_source, reset_then_step
@@ -57,36 +62,79 @@ def _bench(ports, cosim, words, step, cycles, rng):
 
     @always(clock.posedge)
     def fifo_source():
-        # a word popped arrives in dout the next clock; the FIFO runs dry now and then
-        if fifo.pop and words:
+        # a word popped arrives in dout the next clock; the FIFO runs dry now and then, and in the reset
+        if fifo.pop and words and reset != reset.active:
             fifo.dout.next = words.pop(0)
-        fifo.empty.next = not words or rng.random() < 0.2
+        fifo.empty.next = not words or reset == reset.active or rng.random() < 0.2
 
     return dut, fifo_source, clock_source(clock, 2 * HALF_PERIOD), reset_then_step(clock, reset, cycles, step)
+
+
+def run_stream(name, axes, commands, rng, cosim):
+    """Run ``commands`` through a sequencer of ``axes`` axes; per DDA start
+    ("start", the command lines and ``axes_cmd``'s values) and per refusal
+    ("refused", the error code, cleared at once), in order."""
+    ports = sequencer_ports(coord_width=COORD_WIDTH, axes=axes)
+    control, dda, axes_cmd = ports["control"], ports["dda"], ports["axes_cmd"]
+    words = stream_words(commands)
+    events = []
+    # the DDA and the pulse outputs never keep the sequencer waiting: each move starts at the earliest
+    dda.ready.next = 1
+
+    def step(index):
+        control.enable.next = 1
+        control.clear_error.next = 0
+        if control.error_code and not control.clear_error:
+            events.append(("refused", int(control.error_code)))
+            control.clear_error.next = 1
+        if dda.start:
+            deltas = tuple(int(axes_cmd.delta(axis)) for axis in range(axes))
+            events.append(("start", bool(dda.line), deltas, int(axes_cmd.largest)))
+
+    run_traced(_bench(ports, cosim, words, step, 12 * len(words) + 50, rng),
+               f"sequencer_axes_{name}_{'icarus' if cosim else 'myhdl'}")
+    return events
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
 @pytest.mark.parametrize("seed, axes", [(1, 3), (2, 4), (3, 6)])
 def test_line_starts_with_its_largest_displacement(seed, axes, cosim):
     rng = random.Random(seed)
-    ports = sequencer_ports(coord_width=COORD_WIDTH, axes=axes)
-    control, dda, axes_cmd = ports["control"], ports["dda"], ports["axes_cmd"]
     commands = random_commands(rng, axes, 40)
-    lines = [command.deltas for command in commands if isinstance(command, AxesLineCommand)]
-    words = stream_words(commands)
-    started = []
-    # the DDA and the pulse outputs never keep the sequencer waiting: each move starts at the earliest
-    dda.ready.next = 1
+    events = run_stream(f"{seed}_{axes}", axes, commands, rng, cosim)
+    assert [event for event in events if event[0] == "refused"] == []
+    lines = [event[2:] for event in events if event[1]]
+    # the golden values: each LINE's own displacements and the largest of their magnitudes
+    assert lines == [(command.deltas, max(map(abs, command.deltas))) for command in commands
+                     if isinstance(command, AxesLineCommand)]
 
-    def step(index):
-        control.enable.next = 1
-        assert not control.error_code, f"command refused at clock {index}"
-        if dda.start and dda.line:
-            deltas = lines[len(started)]
-            started.append(deltas)
-            assert [int(axes_cmd.delta(axis)) for axis in range(axes)] == list(deltas), f"deltas at clock {index}"
-            assert int(axes_cmd.largest) == max(map(abs, deltas)), f"largest of {deltas} at clock {index}"
 
-    run_traced(_bench(ports, cosim, words, step, 12 * len(words) + 50, rng),
-               f"sequencer_axes_{seed}_{axes}_{'icarus' if cosim else 'myhdl'}")
-    assert started == lines, f"{len(lines) - len(started)} lines not started: run the bench longer"
+def helices_at_their_limit(axes):
+    """Helical ARCs whose Z displacement is at, just within and just beyond
+    ITERATIONS, of either sign, and the coordinates' extremes."""
+    low, high = -(1 << (COORD_WIDTH - 1)), (1 << (COORD_WIDTH - 1)) - 1
+    arcs = []
+    for iterations in (1, 100, high, high + 1, 1 << 20):
+        for size in {iterations - 1, iterations, iterations + 1, high, -low}:
+            for delta in (size, -size):
+                if delta and low <= delta <= high:
+                    helix = (0, 0, delta) + (0,) * (axes - 3)
+                    arcs.append(ArcCommand(10, 0, 0, 10, helix=helix, iterations=iterations))
+    return arcs
+
+
+@pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
+@pytest.mark.parametrize("axes", [3, 4])
+def test_helix_steeper_than_its_iterations_is_refused(axes, cosim):
+    arcs = helices_at_their_limit(axes)
+    events = run_stream(f"helix_{axes}", axes, arcs, random.Random(axes), cosim)
+    expected = []
+    for arc in arcs:
+        try:   # the golden rule: models.dda_axes.check_move (docs/axes.md, RANGE)
+            check_move(arc, axes=axes, coord_width=COORD_WIDTH)
+            expected.append("start")
+        except ValueError:
+            expected.append("refused")
+    assert "start" in expected and "refused" in expected
+    assert [event[0] for event in events] == expected
+    assert {event[1] for event in events if event[0] == "refused"} == {isa.ERROR_CODE["RANGE"]}
