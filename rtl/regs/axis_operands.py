@@ -53,12 +53,9 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
     line_op, arc_op, pulse_op = opcode_of["LINE"], opcode_of["ARC"], opcode_of["PULSE"]
     is_arc = Signal(bool(0))
     magnitude, arrived = Signal(intbv(0)[width:]), Signal(intbv(0)[width:])
-    comparing, steeper, saturated = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    # a helix displacement d is within ITERATIONS K when lowest <= d <= highest: -K and K, each
-    # limited to the coordinates' range, taken from the ITERATIONS word as it arrives
-    top = 1 << (width - 1)
-    highest, lowest = (Signal(intbv(0, min=-top, max=top)) for _ in range(2))
-    iterations_in = ITERATIONS_SLOT + 1   # ITERATIONS' position in an ARC
+    comparing, steeper = Signal(bool(0)), Signal(bool(0))
+    # K + w for a negative arriving word w: below 0 when |w| > K
+    reach = Signal(intbv(0, min=-(1 << width), max=1 << (len(iterations) + 1)))
     deltas = [signed_low(operands[AXIS_SLOT + axis], axes_cmd.delta(axis)) for axis in range(axes)]
     counts = [signed_low(operands[AXIS_SLOT + axis], pulses.count(axis)) for axis in range(axes)]
 
@@ -81,11 +78,17 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
             magnitude.next = word[width:]
 
     @always_comb
+    def helix_reach():
+        reach.next = iterations + word[width:].signed()
+
+    @always_comb
     def helix_steeper():
-        # |the arriving word| > ITERATIONS: two comparisons of the word with registers of its own
-        # width, nothing else between the FIFO's block RAM and bad_helix
-        saturated.next = word[32:width - 1] != 0
-        steeper.next = word[width:].signed() > highest or word[width:].signed() < lowest
+        # |the arriving word| > ITERATIONS, each sign by one comparison of the word itself
+        # (no negation in front of it: the word comes from the FIFO's block RAM late in the clock)
+        if word[width - 1]:
+            steeper.next = reach < 0
+        else:
+            steeper.next = word[width:] > iterations
 
     @always_seq(clock.posedge, reset=reset)
     def take_header():
@@ -98,13 +101,6 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
                 pulses.mask.next = XY_MASK
                 if word[mask_lsb + axes:mask_lsb] != 0:
                     pulses.mask.next = word[mask_lsb + axes:mask_lsb]
-        elif operand_in and is_arc and position == iterations_in:
-            # K >= 2**(W-1): no coordinate is steeper
-            highest.next = top - 1
-            lowest.next = -top
-            if not saturated:
-                highest.next = word[width - 1:]
-                lowest.next = -word[width - 1:]
         elif operand_in and is_arc and position > AXIS_SLOT:
             # a helix displacement: ITERATIONS (taken before it) is not 0 and at least its magnitude
             if iterations == 0 or steeper:
@@ -121,4 +117,5 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
         elif comparing and arrived > axes_cmd.largest:
             axes_cmd.largest.next = arrived
 
-    return deltas, counts, clearing, hand_on, arriving_magnitude, helix_steeper, take_header, keep_largest
+    return (deltas, counts, clearing, hand_on, arriving_magnitude, helix_reach, helix_steeper, take_header,
+            keep_largest)
