@@ -128,8 +128,9 @@ def _route_axis(arc_steps, u_run, v_run, axis, line_step, line_dir, step, direct
 @block
 def _line_queue(clock, reset, cmd, axes_cmd, arc, line, moves):
     """A LINE, or an ARC's helix (``axes_cmd.iterations`` not 0), started on
-    ``cmd`` waits in ``line``'s magnitudes and signs (``_line_magnitude``)
-    and ``iterations`` until the line unit is free, then loads: a line once
+    ``cmd`` waits in ``line``'s magnitudes and signs (``_line_magnitude``),
+    ``largest`` (the sequencer's, found as the operands arrived) and
+    ``iterations`` until the line unit is free, then loads: a line once
     the moves before it have ended (the arc DDA idle too), a helix once its
     arc is the arc DDA's only move (``moves``) or becomes its running one
     (the ``done`` of the one before).  The rest of ``cmd``: the arc DDA's,
@@ -172,6 +173,7 @@ def _line_queue(clock, reset, cmd, axes_cmd, arc, line, moves):
             waiting_helix.next = not cmd.line
             waiting_blend.next = cmd.blend
             line.iterations.next = axes_cmd.iterations
+            line.largest.next = axes_cmd.largest
         elif line.load or (waiting_helix and live_error):
             waiting.next = 0
         if line.load:

@@ -22,9 +22,11 @@ def dda_linear(clock, reset, line, steps):
     ``left`` is a line's T less the iterations done, 0 for a helix);
     ``steps`` (``AxisPulses`` of as many axes: the steps of an iteration
     high for the clock after its edge, with their directions).  ``load``
-    wins over an iteration in the same clock.  A line's threshold is the
-    largest magnitude, found by a chain of comparisons at ``load``
-    (``_larger``); each axis is an ``_axis_line`` (``axis_x``, ...).
+    wins over an iteration in the same clock.  A line's threshold is
+    ``line.largest``, the largest magnitude as the driver found it before
+    the load (the sequencer, as the operands arrive): no comparison of the
+    axes lies between the load and the accumulators; each axis is an
+    ``_axis_line`` (``axis_x``, ...).
 
     A line (3, -1, 2), advance high from the clock after the load:
         clock    _/~\\_/~\\_/~\\_/~\\_/~\\_
@@ -42,14 +44,11 @@ def dda_linear(clock, reset, line, steps):
     # a sum of two values below it
     thr_width = max(width, len(line.iterations)) + 1
     magnitudes = [line.magnitude(axis) for axis in range(axes)]
-    # larger[i]: the largest of magnitudes 0..i
-    larger = [magnitudes[0]] + [Signal(intbv(0)[width:]) for _ in range(1, axes)]
+    largest = line.largest
     threshold, half = Signal(intbv(0)[thr_width:]), Signal(intbv(0)[thr_width:])
     iterate = Signal(bool(0))
     moving = [Signal(bool(0)) for _ in range(axes)]
     moving_any = ConcatSignal(*reversed(moving))   # bit i: axis i has steps left
-    chain = [_larger(larger[axis - 1], magnitudes[axis], larger[axis]) for axis in range(1, axes)]
-    largest = larger[-1]
     lines = [named(f"axis_{suffix}", _axis_line(clock, reset, line.load, iterate, magnitudes[axis],
                                                  line.positive(axis), half, threshold, steps.step(axis),
                                                  steps.dir(axis), moving[axis]))
@@ -77,20 +76,7 @@ def dda_linear(clock, reset, line, steps):
         elif iterate and line.left != 0:
             line.left.next = line.left - 1
 
-    return chain, lines, iterating, count_iterations
-
-
-@block
-def _larger(first, second, larger):
-    """``larger`` is the larger of ``first`` and ``second``."""
-
-    @always_comb
-    def pick():
-        larger.next = first
-        if second > first:
-            larger.next = second
-
-    return pick
+    return lines, iterating, count_iterations
 
 
 @block

@@ -296,9 +296,10 @@ class LinearPort:
 
     The driver gives ``load`` (one clock) with each axis's
     ``magnitude_<axis>`` (|d|, as wide as the coordinates: |-2**(W-1)| fits)
-    and ``positive_<axis>`` (the sign: 1 for d >= 0), ``helix`` (1: the
+    and ``positive_<axis>`` (the sign: 1 for d >= 0), ``largest`` (max |d|,
+    found before the load: the unit compares no magnitudes), ``helix`` (1: the
     threshold is ``iterations``, an ARC's ITERATIONS K, 32 bits; 0: a line,
-    threshold max |d|), and ``advance`` (one iteration in each clock it is
+    threshold ``largest``), and ``advance`` (one iteration in each clock it is
     high while an axis has steps left: the feed rate's tick for a line, the
     arc's iterations for a helix); the unit drives ``following`` (an axis
     has steps left), ``busy`` (a line's iterations left) and ``left`` (how
@@ -313,6 +314,7 @@ class LinearPort:
         for suffix in axis_suffixes(axes):
             setattr(self, f"magnitude_{suffix}", Signal(intbv(0)[coord_width:]))
             setattr(self, f"positive_{suffix}", Signal(bool(0)))
+        self.largest = Signal(intbv(0)[coord_width:])
         self.left = Signal(intbv(0)[coord_width:])
 
     def magnitude(self, axis):
@@ -338,11 +340,15 @@ class AxesCommand:
     ``coord_width`` bits) of a LINE (the line runs through ``dda_linear``;
     on two axes a line is ``DdaPort``'s (``xe``, ``ye``)) or of an ARC's
     helix (0 on the axes it does not move), and an ARC's ``iterations``
-    (ITERATIONS K; 0: no helix)."""
+    (ITERATIONS K; 0: no helix), and ``largest``: a LINE's largest
+    |displacement| (its iteration count T), which the sequencer finds as the
+    operands arrive so that no comparison of the axes waits for the start
+    (``rtl/regs/axis_operands.py``; of an ARC it is not read)."""
 
     def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
         self.axes = axes
         if axes > 2:
+            self.largest = Signal(intbv(0)[coord_width:])
             bits = axis_index_bits(axes)
             self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
             self.iterations = Signal(intbv(0)[ITERATIONS_BITS:])

@@ -1,5 +1,5 @@
 """What the sequencer of a card of more than two axes hands on from an N-axis command's operands."""
-from myhdl import Signal, always_comb, always_seq, block, concat, intbv
+from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK
@@ -24,7 +24,11 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
     ``word``), ``operand_in`` (an operand arrives), ``position`` (its
     index + 1), ``operands`` (the registers), ``axes_cmd`` (out: the plane,
     taken with the header; each axis's displacement and ITERATIONS, read
-    with the DDA's start), ``pulses`` (out: each axis's count, and the mask
+    with the DDA's start; ``largest``, a LINE's largest |displacement|: the
+    largest magnitude of the command's operands, each registered as it
+    arrives (``arrived``) and compared with the largest so far the clock
+    after: final in the second clock after the last operand's, the first
+    in which the sequencer can give the start), ``pulses`` (out: each axis's count, and the mask
     of a PULSE, taken with its header), ``clear_iterations`` (out: an ARC
     header clears the ITERATIONS register: no helix), ``clear_axes`` (out: a
     LINE, ARC or PULSE header clears the axes' registers: an axis it does
@@ -35,6 +39,11 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
         word        ==X=ARC hdr=X=XS=X ... X=ITER=X=DZ=X
         header_in   __/~~~~~~~\\_____________________
         bad_helix   ____________________________/~~~     |DZ| > ITER
+
+        word        =X=hdr=X==DX=X==DY=X==DZ=X=====X=====
+        arrived     =X=====X=====X=|DX|X=|DY|X=|DZ|X=====
+        largest     =X=====X==0==X==0==X==a==X==b==X==c==    a = |DX|, c = max |d|
+        dda.start   _______________________________/~~~~~\\   at the earliest
     """
     axes = axes_cmd.axes
     width = len(axes_cmd.delta(0))
@@ -43,7 +52,10 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
     opcode_of = {op.name: op.code for op in isa.OPCODES}
     line_op, arc_op, pulse_op = opcode_of["LINE"], opcode_of["ARC"], opcode_of["PULSE"]
     is_arc = Signal(bool(0))
-    magnitude = Signal(intbv(0)[width:])
+    magnitude, arrived = Signal(intbv(0)[width:]), Signal(intbv(0)[width:])
+    comparing, steeper = Signal(bool(0)), Signal(bool(0))
+    # K + w for a negative arriving word w: below 0 when |w| > K
+    reach = Signal(intbv(0, min=-(1 << width), max=1 << (len(iterations) + 1)))
     deltas = [signed_low(operands[AXIS_SLOT + axis], axes_cmd.delta(axis)) for axis in range(axes)]
     counts = [signed_low(operands[AXIS_SLOT + axis], pulses.count(axis)) for axis in range(axes)]
 
@@ -65,6 +77,19 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
         else:
             magnitude.next = word[width:]
 
+    @always_comb
+    def helix_reach():
+        reach.next = iterations + word[width:].signed()
+
+    @always_comb
+    def helix_steeper():
+        # |the arriving word| > ITERATIONS, each sign by one comparison of the word itself
+        # (no negation in front of it: the word comes from the FIFO's block RAM late in the clock)
+        if word[width - 1]:
+            steeper.next = reach < 0
+        else:
+            steeper.next = word[width:] > iterations
+
     @always_seq(clock.posedge, reset=reset)
     def take_header():
         if header_in:
@@ -78,7 +103,19 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
                     pulses.mask.next = word[mask_lsb + axes:mask_lsb]
         elif operand_in and is_arc and position > AXIS_SLOT:
             # a helix displacement: ITERATIONS (taken before it) is not 0 and at least its magnitude
-            if iterations == 0 or concat(intbv(0)[len(iterations) - width:], magnitude) > iterations:
+            if iterations == 0 or steeper:
                 bad_helix.next = 1
 
-    return deltas, counts, clearing, hand_on, arriving_magnitude, take_header
+    @always_seq(clock.posedge, reset=reset)
+    def keep_largest():
+        # one comparison a clock: the arriving operand's magnitude is registered first
+        comparing.next = operand_in
+        if operand_in:
+            arrived.next = magnitude
+        if header_in:
+            axes_cmd.largest.next = 0
+        elif comparing and arrived > axes_cmd.largest:
+            axes_cmd.largest.next = arrived
+
+    return (deltas, counts, clearing, hand_on, arriving_magnitude, helix_reach, helix_steeper, take_header,
+            keep_largest)

@@ -106,6 +106,8 @@ class NarrowAxes:
         deltas = command.deltas if line else tuple(command.helix) + (0,) * AXES
         for axis, delta in zip("xyz", deltas):
             model[f"axes_cmd_delta_{axis}"] = delta & ones
+        if line:
+            model["axes_cmd_largest"] = max(map(abs, deltas))
         if not line:
             for name in ("xs", "ys", "xe", "ye"):
                 model[f"cmd_{name}"] = getattr(command, name) & ones

@@ -99,6 +99,7 @@ def drive(cmd, axes_cmd, move):
         if axes_cmd.axes > 2:
             for axis, delta in enumerate(move.deltas):
                 axes_cmd.delta(axis).next = delta
+            axes_cmd.largest.next = max(map(abs, move.deltas))
     else:
         cmd.xs.next, cmd.ys.next, cmd.xe.next, cmd.ye.next = move.xs, move.ys, move.xe, move.ye
         cmd.ccw.next, cmd.variant.next = move.ccw, move.variant

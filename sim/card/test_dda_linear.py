@@ -5,8 +5,9 @@ the major axis on any of them, a line of zero length), loaded back to back
 or after a gap, the feed's ``advance`` random; at every clock the steps
 and directions of the iteration just made, the iterations left and
 ``busy`` are compared with ``models.dda_axes.MoveIterator`` run on the same
-``AxesLineCommand``.  The same bench runs on the MyHDL block and on its
-Verilog in Icarus.
+``AxesLineCommand``; the bench gives each line's largest magnitude
+with its load, as the sequencer does.  The same bench runs on the MyHDL
+block and on its Verilog in Icarus.
 """
 import random
 
@@ -76,6 +77,7 @@ def test_lines_step_as_the_golden_model_every_clock(seed, axes, largest, cosim):
             deltas = waiting.pop(0)
             for axis, delta in enumerate(deltas):
                 line.magnitude(axis).next, line.positive(axis).next = abs(delta), delta >= 0
+            line.largest.next = max(map(abs, deltas))
             model = state["model"] = MoveIterator(AxesLineCommand(deltas), axes=axes, coord_width=COORD_WIDTH)
             done.append(deltas)
         elif advance and not finished:
