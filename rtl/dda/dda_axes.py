@@ -144,7 +144,7 @@ def _line_queue(clock, reset, cmd, axes_cmd, arc, line, moves):
     helix, own, alone = (Signal(bool(0)) for _ in range(3))
     take, load_line, load_helix = (Signal(bool(0)) for _ in range(3))
     live_error = Signal(bool(0))
-    all_ones = (1 << len(cmd.stop_left)) - 1
+    stop_width = len(cmd.stop_left)
     pad = len(cmd.stop_left) - len(line.left)
     magnitudes = [_line_magnitude(clock, take, axes_cmd.delta(axis), line.magnitude(axis), line.positive(axis))
                   for axis in range(axes)]
@@ -209,9 +209,9 @@ def _line_queue(clock, reset, cmd, axes_cmd, arc, line, moves):
         if alone:   # a helix's axes after its arc (their iterations left are not counted)
             cmd.stop_left.next = 0
             if blend:
-                cmd.stop_left.next = all_ones
+                cmd.stop_left.next = intbv(-1)[stop_width:]
         elif line.busy or last:   # the line runs, or its last steps leave (0 left)
-            cmd.stop_left.next = all_ones
+            cmd.stop_left.next = intbv(-1)[stop_width:]
             if not blend:
                 cmd.stop_left.next = concat(intbv(0)[pad:], line.left)
 

@@ -1,5 +1,5 @@
 """What the sequencer of a card of more than two axes hands on from an N-axis command's operands."""
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_comb, always_seq, block, concat, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK
@@ -54,8 +54,9 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
     is_arc = Signal(bool(0))
     magnitude, arrived = Signal(intbv(0)[width:]), Signal(intbv(0)[width:])
     comparing, steeper = Signal(bool(0)), Signal(bool(0))
-    # K + w for a negative arriving word w: below 0 when |w| > K
-    reach = Signal(intbv(0, min=-(1 << width), max=1 << (len(iterations) + 1)))
+    # K + w for a negative arriving word w (its bits read unsigned: w + 2^width): below 2^width, no bit
+    # from ``width`` up, when |w| > K
+    reach = Signal(intbv(0)[len(iterations) + 1:])
     deltas = [signed_low(operands[AXIS_SLOT + axis], axes_cmd.delta(axis)) for axis in range(axes)]
     counts = [signed_low(operands[AXIS_SLOT + axis], pulses.count(axis)) for axis in range(axes)]
 
@@ -79,16 +80,16 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
 
     @always_comb
     def helix_reach():
-        reach.next = iterations + word[width:].signed()
+        reach.next = concat(intbv(0)[1:], iterations) + concat(intbv(0)[len(reach) - width:], word[width:])
 
     @always_comb
     def helix_steeper():
         # |the arriving word| > ITERATIONS, each sign by one comparison of the word itself
         # (no negation in front of it: the word comes from the FIFO's block RAM late in the clock)
         if word[width - 1]:
-            steeper.next = reach < 0
+            steeper.next = reach[len(reach):width] == 0
         else:
-            steeper.next = word[width:] > iterations
+            steeper.next = concat(intbv(0)[len(iterations) - width:], word[width:]) > iterations
 
     @always_seq(clock.posedge, reset=reset)
     def take_header():
