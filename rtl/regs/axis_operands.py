@@ -54,9 +54,12 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
     is_arc = Signal(bool(0))
     magnitude, arrived = Signal(intbv(0)[width:]), Signal(intbv(0)[width:])
     comparing, steeper = Signal(bool(0)), Signal(bool(0))
-    # K + w for a negative arriving word w (its bits read unsigned: w + 2^width): below 2^width, no bit
-    # from ``width`` up, when |w| > K
-    reach = Signal(intbv(0)[len(iterations) + 1:])
+    # |w| > K for the arriving word w, by comparisons of its bits (read unsigned: u) with K's low bits,
+    # never of a sum or a negation: the word comes from the FIFO's block RAM late in the clock.
+    # K >= 2^width: no word is steeper.  Else w >= 0: u > K; w < 0 (u = w + 2^width): K + w < 0,
+    # that is u <= 2^width - 1 - K, the low bits of K inverted.
+    k_small, k_inverted = Signal(bool(0)), Signal(intbv(0)[width:])
+    above_k, above_inverted = Signal(bool(0)), Signal(bool(0))
     deltas = [signed_low(operands[AXIS_SLOT + axis], axes_cmd.delta(axis)) for axis in range(axes)]
     counts = [signed_low(operands[AXIS_SLOT + axis], pulses.count(axis)) for axis in range(axes)]
 
@@ -79,17 +82,21 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
             magnitude.next = word[width:]
 
     @always_comb
-    def helix_reach():
-        reach.next = concat(intbv(0)[1:], iterations) + concat(intbv(0)[len(reach) - width:], word[width:])
+    def helix_bounds():
+        k_small.next = iterations[len(iterations):width] == 0
+        k_inverted.next = ~iterations[width:]
+
+    @always_comb
+    def helix_compares():
+        above_k.next = word[width:] > iterations[width:]
+        above_inverted.next = word[width:] > k_inverted
 
     @always_comb
     def helix_steeper():
-        # |the arriving word| > ITERATIONS, each sign by one comparison of the word itself
-        # (no negation in front of it: the word comes from the FIFO's block RAM late in the clock)
         if word[width - 1]:
-            steeper.next = reach[len(reach):width] == 0
+            steeper.next = k_small and not above_inverted
         else:
-            steeper.next = concat(intbv(0)[len(iterations) - width:], word[width:]) > iterations
+            steeper.next = k_small and above_k
 
     @always_seq(clock.posedge, reset=reset)
     def take_header():
@@ -118,5 +125,5 @@ def axis_operands(clock, reset, word, arriving, header_in, operand_in, position,
         elif comparing and arrived > axes_cmd.largest:
             axes_cmd.largest.next = arrived
 
-    return (deltas, counts, clearing, hand_on, arriving_magnitude, helix_reach, helix_steeper, take_header,
+    return (deltas, counts, clearing, hand_on, arriving_magnitude, helix_bounds, helix_compares, helix_steeper, take_header,
             keep_largest)
