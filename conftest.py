@@ -45,6 +45,8 @@ SLOW_CASES = {
                                                                                   "(pci_slave-m000 stays)",
     "tests/formal/test_formal.py::test_dda_defect_is_caught[x_steps_with_y]": "another defect for the same group",
     "tests/formal/test_formal.py::test_card_defect_is_caught[level_off_by_one]": "another defect for the same group",
+    "tests/host/test_planner.py::test_rounding_is_carried_forward_over_many_segments[100000]": "the same rounding "
+                                                                                               "over ten times the segments",
     "tests/formal/test_formal.py::test_machine_defect_is_caught[clear_stop_during_estop]": "one machine defect per rule "
                                                                                           "family runs by default",
     "tests/formal/test_formal.py::test_machine_defect_is_caught[zero_while_seeking]": "one machine defect per rule "

@@ -82,11 +82,12 @@ def ends_per_primitive(planned, moves):
     return {entry.primitive: points[-1] for entry, points in moves}
 
 
-def test_rounding_is_carried_forward_over_100000_segments():
+@pytest.mark.parametrize("segments", [10_000, 100_000])
+def test_rounding_is_carried_forward_over_many_segments(segments):
     rng = random.Random(2024)
     machine = Machine(steps_per_mm=(80.0, 123.4567))
     drawing, here = [], (0.0, 0.0)
-    for number in range(100_000):
+    for number in range(segments):
         there = (here[0] + rng.uniform(-0.3, 0.3), here[1] + rng.uniform(-0.05, 0.05))
         drawing.append(Line(here, there, 600.0, f"seg{number}"))
         here = there
