@@ -1,6 +1,7 @@
 """The figures of ``flow.synthesize`` as text, one format for every family."""
 from fpgaflow.flow import FAMILIES, PCI_MHZ
-from fpgaflow.pin_timing import PCI33_CLOCK_TO_OUT_NS, PCI33_SETUP_NS, PCI_PREFIX, pin_groups, worst_pci_pins
+from fpgaflow.pin_timing import (PCI33_CLOCK_TO_OUT_NS, PCI33_SETUP_NS, PCI_PREFIX, pin_budget_misses, pin_groups,
+                                 worst_pci_pins)
 from fpgaflow.wrapper import is_wrapper_register, wrapper_own
 
 
@@ -105,8 +106,10 @@ def format_sweep(results, family):
         pins = worst_pci_pins(figures, family)
         for key, value in pins.items():
             worst[key] = max(worst.get(key, value), value)
+        misses = pin_budget_misses(figures, family)   # named per seed: the last seed's pin table is the only one printed
         lines.append(f"   {seed:>4} {figures['fmax_mhz']:>9} {figures['lcs']:>12} {figures['fabric_ffs']:>6} "
-                     + " ".join(f"{pins.get(key, '-'):>9}" for key in ("in", "out", "oe")))
+                     + " ".join(f"{pins.get(key, '-'):>9}" for key in ("in", "out", "oe"))
+                     + (f"   over budget: {', '.join(misses)}" if misses else ""))
     lines.append("   worst PCI pin over the seeds (ns): " + ", ".join(
         f"{label} {worst[key]}" for key, label in (("in", "pin to register"), ("out", "register to pin"),
                                                    ("oe", "register to enable")) if key in worst))
