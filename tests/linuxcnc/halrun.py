@@ -39,12 +39,17 @@ def note(*pins):
     return f"loadusr -w ./note.sh {' '.join(pins)}\n"
 
 
+def write_scripts(run, scripts):
+    """Each of ``scripts`` ({file name: shell text}) into ``run``, executable by LinuxCNC's user."""
+    for name, text in scripts.items():
+        (run / name).write_text(text)
+        (run / name).chmod(0o755)
+
+
 def run_halrun(run, script, servers):
     """halrun ``script`` with a card server per entry of ``servers`` ({name: server options});
     (output, notes {pin: [values]}, records {name: the server's record})."""
-    for name, text in HELPERS.items():
-        (run / name).write_text(text)
-        (run / name).chmod(0o755)
+    write_scripts(run, HELPERS)
     (run / "test.hal").write_text(script)
     (run / "test.hal").chmod(0o666)
     started = {}

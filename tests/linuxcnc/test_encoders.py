@@ -16,7 +16,7 @@ from models import registers as regmap
 from models.encoder_model import MODE_QUADRATURE, MODE_STEP_DIR, EncoderModel
 from sim.card.card_server import parse_arguments
 from sim.card.encoder_pins import WALK_SPACING, play
-from tests.linuxcnc.halrun import note, run_halrun, until
+from tests.linuxcnc.halrun import note, run_halrun, until, write_scripts
 from tests.linuxcnc.session import CLOCK_HZ, PERIOD_CLOCKS, missing, run_folder
 
 pytestmark = [pytest.mark.linuxcnc, pytest.mark.xdist_group("linuxcnc"),
@@ -109,9 +109,7 @@ def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     (rawcounts) running on; reset holds count at 0; at enable the card's following error is set
     from the scales and ferror-limit, a ratio of the wrong sign refused."""
     run = run_folder()
-    for name, text in (("atleast.sh", ATLEAST), ("show.sh", SHOW)):
-        (run / name).write_text(text)
-        (run / name).chmod(0o755)
+    write_scripts(run, {"atleast.sh": ATLEAST, "show.sh": SHOW})
     output, notes, records = run_halrun(run, TWO_CARDS.format(run=run) + SCRIPT,
                                         {"card0": _server_options(), "card1": ()})
     card0 = {**_pins(run / "card0.pins"), **_pins(run / "card0.params")}
@@ -212,9 +210,7 @@ def test_encoder_index_counter_mode_and_quad_error(linuxcnc_alone):
     enable are dropped); the glitch after it sets Y's quad-error (said once), not X's (quadrature by
     then), and Y's count does not move at it; quad-error-enable FALSE clears it, TRUE again reads FALSE."""
     run = run_folder()
-    for name, text in (("atleast.sh", ATLEAST), ("later.sh", LATER)):
-        (run / name).write_text(text)
-        (run / name).chmod(0o755)
+    write_scripts(run, {"atleast.sh": ATLEAST, "later.sh": LATER})
     options = _short_options()
     script = ONE_CARD_LOADED.format(run=run) + (
         f"setp {E}.00.counter-mode 1\nsetp {E}.00.scale {X_COUNTER_SCALE}\n"

@@ -20,6 +20,7 @@ import pytest
 
 from models import card_socket
 from models import registers as regmap
+from sim.card.card_socket_server import receive
 from tests.linuxcnc.halrun import listening_socket, run_halrun
 from tests.linuxcnc.session import missing, run_folder
 
@@ -36,16 +37,6 @@ addf dda-card.0.write servo-thread
 start
 loadusr -w sleep 1
 """
-
-
-def receive(connection, size):
-    data = b""
-    while len(data) < size:
-        chunk = connection.recv(size - len(data))
-        if not chunk:
-            raise EOFError
-        data += chunk
-    return data
 
 
 class SlowRelay:
@@ -70,32 +61,33 @@ class SlowRelay:
         answers = threading.Thread(target=self.answer, args=(card, driver), daemon=True)
         answers.start()
         try:
-            while True:
-                header = receive(driver, card_socket.REQUEST_WORDS * WORD.size)
+            while (header := receive(driver, card_socket.REQUEST_WORDS * WORD.size)) is not None:
                 op, a, b = struct.unpack("<3I", header)
                 data = receive(driver, a * WORD.size) if op == card_socket.FIFO else b""
                 self.requests.append((op, a, b))
                 self.ops.put(op)
-                card.sendall(header + data)
-        except (EOFError, OSError):
-            card.shutdown(socket.SHUT_RDWR)  # the card server sees the driver go (close alone would wait
-        answers.join(60)                     # for the answers thread's receive)
+                card.sendall(header + (data or b""))
+        except OSError:
+            pass
+        finally:
+            # the card server sees the driver go (close alone would wait for the answers thread's receive)
+            card.shutdown(socket.SHUT_RDWR)
+        answers.join(60)
         card.close()
         driver.close()
 
     def answer(self, card, driver):
         running = False
         try:
-            while True:
-                answer = receive(card, card_socket.ANSWER_WORDS * WORD.size)
+            while (answer := receive(card, card_socket.ANSWER_WORDS * WORD.size)) is not None:
                 status, value = struct.unpack("<2I", answer)
-                message = receive(card, value) if status else b""
+                message = (receive(card, value) or b"") if status else b""
                 op = self.ops.get()
                 running = running or op == card_socket.ADVANCE
                 if running and op == card_socket.READ:
                     time.sleep(READ_DELAY)
                 driver.sendall(answer + message)
-        except (EOFError, OSError):
+        except OSError:
             pass
 
 
