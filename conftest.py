@@ -45,6 +45,12 @@ SLOW_CASES = {
                                                                                   "(pci_slave-m000 stays)",
     "tests/formal/test_formal.py::test_dda_defect_is_caught[x_steps_with_y]": "another defect for the same group",
     "tests/formal/test_formal.py::test_card_defect_is_caught[level_off_by_one]": "another defect for the same group",
+    "tests/formal/test_formal.py::test_card_defect_is_caught[read_pointer_twice]": "a defect of card_fifo_order, a "
+                                                                                   "proof of the slow set itself",
+    "tests/rtl/test_lint.py::test_vendor_primitives_only_where_the_device_asks_and_every_axis_has_pins[generic]":
+        "another build of the units gen/ holds (a six-axis conversion of its own)",
+    "sim/pci/test_delayed_target.py::test_every_burst_length_with_a_few_retries_per_dword[0]": "prefetch 0 runs by "
+        "default in test_a_hundred_retries_per_delayed_read; prefetch 8 sweeps every length",
     "tests/host/test_planner.py::test_rounding_is_carried_forward_over_many_segments[100000]": "the same rounding "
                                                                                                "over ten times the segments",
     "tests/formal/test_formal.py::test_machine_defect_is_caught[clear_stop_during_estop]": "one machine defect per rule "
