@@ -49,6 +49,12 @@ SLOW_CASES = {
                                                                                    "proof of the slow set itself",
     "tests/rtl/test_lint.py::test_vendor_primitives_only_where_the_device_asks_and_every_axis_has_pins[generic]":
         "another build of the units gen/ holds (a six-axis conversion of its own)",
+    "sim/card/test_card_e2e_axes.py::test_n_axis_card_steps_the_golden_paths_on_verilator[3-axis]": "the 3-axis "
+        "card's Verilator pins run by default in test_three_axis_pins_identical_on_myhdl_icarus_and_verilator",
+    "tests/formal/test_formal.py::test_fast_group_proves[pci_covers]": "cover traces of the PCI target; its "
+        "protocol benches and the fixed mutant pci_slave-m000 run by default",
+    "sim/backends/test_verilator.py::test_a_changed_verilog_is_rebuilt_never_taken_from_the_cache": "two "
+        "compiles; what the cache key holds is checked by default (test_the_cache_key_covers_...)",
     "sim/pci/test_delayed_target.py::test_every_burst_length_with_a_few_retries_per_dword[0]": "prefetch 0 runs by "
         "default in test_a_hundred_retries_per_delayed_read; prefetch 8 sweeps every length",
     "tests/host/test_planner.py::test_rounding_is_carried_forward_over_many_segments[100000]": "the same rounding "
