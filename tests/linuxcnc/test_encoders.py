@@ -176,10 +176,10 @@ X_COUNTER_SCALE = 10.0  # X's counts per position unit in counter mode
 TRAINS = ((5_000, 25), (10_000, -10))   # step/dir pulse trains on X (counter mode) and Y (quadrature): 25 up, 10 down
 SHORT_WALK = 40         # counts walked on Y before its index
 AFTER_GLITCH = 20       # counts walked on Y after its second glitch
-# card clocks (1,000 a servo period); the glitch after the enable comes 200 ms after it at the earliest, so the
-# note of quad-error between them is taken before it however slowly halcmd runs on a loaded machine
-SHORT_CUES = {"glitch before enable": 1, "walk": 20_000, "index": 30_000, "glitch": 200_000, "after glitch": 205_000,
-              "noted": 207_000}
+# card clocks (1,000 a servo period): a note taken after one cue comes at least 150 ms of card time before
+# the next cue it must precede, however slowly halcmd runs on a loaded machine
+SHORT_CUES = {"glitch before enable": 1, "walk": 20_000, "walked": 22_000, "index": 200_000, "glitch": 400_000,
+              "after glitch": 405_000, "noted": 407_000}
 
 
 def _short_options():
@@ -221,7 +221,7 @@ def test_encoder_index_counter_mode_and_quad_error(linuxcnc_alone):
         f"setp {E}.00.quad-error-enable 1\nsetp {E}.01.quad-error-enable 1\n"
         f"setp {E}.01.index-enable 1\nloadusr -w ./later.sh dda-card.0.clock 2000\n"
         + note(f"{E}.00.quad-error", f"{E}.01.quad-error")
-        + f"loadusr -w ./atleast.sh dda-card.0.clock {SHORT_CUES['walk']}\n"
+        + f"loadusr -w ./atleast.sh dda-card.0.clock {SHORT_CUES['walked']}\n"
         + note(f"{E}.01.index-enable") + until(f"{E}.01.index-enable", "FALSE")
         + note(f"{E}.01.count", f"{E}.01.rawcounts", f"{E}.00.count", f"{E}.00.position")
         # X to quadrature (its trains are over): a quadrature error could show on X too from here on
