@@ -42,9 +42,11 @@ FAST = 3000            # X's first walk: counts up, WALK_SPACING clocks apart (9
 BACK = -200            # then back
 AFTER_INDEX = 100      # counts walked after the index
 Y_WALK = -300          # Y, at scale 0 (forced to 1)
-CUES = {  # card clocks (1 MHz: microseconds since the card server opened the card)
-    "fast": 100_000, "y walk": 200_000, "stray index": 215_000, "arm after": 230_000, "back": 260_000,
-    "probe": 280_000, "index": 300_000, "after index": 340_000,
+# card clocks (1 MHz: microseconds since the card server opened the card); a note or setp that must come
+# between two cues has 70 ms of card time or more for it, however slowly halcmd runs on a loaded machine
+CUES = {
+    "fast": 100_000, "y walk": 200_000, "stray index": 215_000, "arm after": 230_000, "back": 300_000,
+    "probe": 400_000, "index": 520_000, "after index": 560_000,
 }
 X_FERROR = 0.5         # X's following-error limit (position units): 50 counts at scale 100
 VEL_TIMEOUT = 0.05     # s: the velocity falls to 0 this long after the last count
@@ -96,7 +98,7 @@ def _pins(path):
             if len(fields) >= 4 and fields[-1].startswith("dda-card.")}
 
 
-@pytest.mark.slow(reason="two card servers and 0.35 s of card time in lock-step: 25 to 50 s here; "
+@pytest.mark.slow(reason="two card servers and 0.6 s of card time in lock-step: 9 to 15 s here; "
                          "test_encoder_index_counter_mode_and_quad_error covers the pins and the index in the default set")
 def test_encoder_pins_count_velocity_index_and_reset(linuxcnc_alone):
     """A 3-axis card with encoders and a 2-axis card without, under one driver: hostmot2's encoder
