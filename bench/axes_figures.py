@@ -22,7 +22,8 @@ figures):
   angle (per angle), and the 3-D distance from the ideal helix's point at
   that angle (the axial and the radial deviation, sqrt(a^2 + r^2)); how many
   of the helices the host's rule ``|h| max w <= W`` takes (fit), the
-  figures over those and over every helix, and the steepest rise it takes
+  figures over those and over every helix, the ITERATIONS rule's per angle
+  over those that fit, and the steepest rise the rule takes
   (``W // max w``) as a fraction of K.
 """
 import argparse
@@ -152,26 +153,28 @@ def area_deviation(command):
 def area_table(results):
     """Rows of the helix-by-area table: ``results`` [(variant, plane, ccw, area_deviation)]."""
     print(f"\nby swept area\n{'variant':<12} {'plane':<6} {'dir':<4} {'helices':>7} {'fit':>4} {'per area':>9} "
-          f"{'per angle':>10} {'3-D':>7} {'angle all':>10} {'3-D all':>8}")
-    overall, total, fit = [0.0] * 5, 0, 0
+          f"{'per angle':>10} {'3-D':>7} {'angle all':>10} {'3-D all':>8} {'it angle':>9}")
+    overall, total, fit = [0.0] * 6, 0, 0
     for key in dict.fromkeys(r[:3] for r in results):
         rows = [r[3] for r in results if r[:3] == key]
         fitting = [r for r in rows if r[3]]
         figures = (max((r[0] for r in fitting), default=0.0), max((r[1] for r in fitting), default=0.0),
-                   max((r[2] for r in fitting), default=0.0), max(r[1] for r in rows), max(r[2] for r in rows))
+                   max((r[2] for r in fitting), default=0.0), max(r[1] for r in rows), max(r[2] for r in rows),
+                   max((r[5] for r in fitting), default=0.0))
         overall = [max(a, b) for a, b in zip(overall, figures)]
         total, fit = total + len(rows), fit + len(fitting)
         variant, code, ccw = key
         print(f"{VARIANT_NAMES[variant]:<12} G{code:<5} {'ccw' if ccw else 'cw':<4} {len(rows):>7} {len(fitting):>4} "
-              + " ".join(f"{f:{w}.3f}" for f, w in zip(figures, (9, 10, 7, 10, 8))))
+              + " ".join(f"{f:{w}.3f}" for f, w in zip(figures, (9, 10, 7, 10, 8, 9))))
     print(f"{'all':<12} {'':<6} {'':<4} {total:>7} {fit:>4} "
-          + " ".join(f"{f:{w}.3f}" for f, w in zip(overall, (9, 10, 7, 10, 8))))
+          + " ".join(f"{f:{w}.3f}" for f, w in zip(overall, (9, 10, 7, 10, 8, 9))))
     for variant in dict.fromkeys(r[0] for r in results):
         ratios = [r[3][4] for r in results if r[0] == variant]
         print(f"{VARIANT_NAMES[variant]}: the steepest rise the rule takes (W // max w): "
               f"{min(ratios):.3f} .. {max(ratios):.3f} K")
     print("\nper area: |z - h A_k / W|; per angle: |z - h theta_k / Theta|; 3-D: from the ideal helix's point at "
-          "that angle; fit: |h| max w <= W (the columns before 'all' over those)")
+          "that angle; fit: |h| max w <= W (the columns before 'all' over those); it angle: per angle of the "
+          "ITERATIONS rule over the same helices that fit")
 
 
 def main(argv=None):
@@ -204,7 +207,7 @@ def main(argv=None):
                     command = random_helix(rng, variant, plane, ccw)
                     gentle = abs(command.helix[command.helix_axes[0]]) * GENTLE <= command.iterations
                     rows.append((*helix_deviation(command), gentle))
-                    by_area.append((variant, code, ccw, area_deviation(command)))
+                    by_area.append((variant, code, ccw, area_deviation(command) + (rows[-1][1],)))
                 figures = (max(r[0] for r in rows), max(r[1] for r in rows),
                            max((r[1] for r in rows if r[3]), default=0.0), max(r[2] for r in rows))
                 overall = [max(a, b) for a, b in zip(overall, figures)]

@@ -165,3 +165,22 @@ def test_the_range_rules_of_a_helix_by_area(area, message):
     with pytest.raises(ValueError, match=message):
         check_move(ArcCommand(5, 0, 0, 5, helix=(0, 0, 3)), 3, coord_width=10, helix_area=area)
     check_move(ArcCommand(5, 0, 0, 5, helix=(0, 0, 3)), 3, coord_width=10, helix_area=(1 << area_width(10)) - 1)
+
+
+@pytest.mark.parametrize("variant", [TRADITIONAL, WEIGHTED, IMPROVED, PRECISE])
+def test_the_largest_full_circles_of_a_6_bit_card_sweep_an_area_within_its_width(variant):
+    # docs/axes.md: AREA has 2c + 1 bits; a whole turn sweeps about 2 pi R^2 with R < 2^(c-1)
+    limit, checked = 1 << 5, 0
+    for x in range(-limit + 1, limit):
+        for y in range(-limit + 1, limit):
+            command = ArcCommand(x, y, x, y, True, variant)
+            if not (limit - 1) ** 2 <= x * x + y * y < limit ** 2:   # the outermost ring
+                continue
+            try:
+                plan_arc(command, 6)
+            except ValueError:
+                continue
+            points = iterate(command, 6).points()
+            assert arc_area(command, 6).total == plane_sweeps(command, points)[-1] < 1 << area_width(6)
+            checked += 1
+    assert checked > 50
