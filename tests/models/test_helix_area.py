@@ -184,3 +184,19 @@ def test_the_largest_full_circles_of_a_6_bit_card_sweep_an_area_within_its_width
             assert arc_area(command, 6).total == plane_sweeps(command, points)[-1] < 1 << area_width(6)
             checked += 1
     assert checked > 50
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_every_helix_axis_of_a_move_follows_the_area_on_its_own(seed):
+    # a 6-axis card: the arc in G18 (Z, X), Y, A, B and C rising by different amounts
+    rng = random.Random(seed)
+    command = random_arc(rng, PLANES["G18"], seed % 2 == 1)
+    area = arc_area(command)
+    steepest = area.total // area.largest
+    helix = (0, rng.randint(-steepest, steepest), 0, steepest, -rng.randint(0, steepest), -steepest)
+    positions = iterate_axes(replace(command, helix=helix), 6, helix_area=area.total).positions()
+    for point, swept in zip(positions, plane_sweeps(command, positions)):
+        for axis in (1, 3, 4, 5):
+            rise = helix[axis]
+            assert point[axis] == (1 if rise >= 0 else -1) * ((area.total // 2 + abs(rise) * swept) // area.total)
+    assert positions[-1][1] == helix[1] and positions[-1][3:] == helix[3:]
