@@ -171,8 +171,9 @@ class MoveIterator:
             self.follower = (AreaFollower(deltas, helix_area, coord_width) if self.by_area
                              else Follower(deltas, command.iterations or 0))
         else:
-            if helix_area is not None or options:
-                raise ValueError(f"options {sorted(options)} apply to arcs only")
+            given = sorted(options) + (["helix_area"] if helix_area is not None else [])
+            if given:
+                raise ValueError(f"options {given} apply to arcs only")
             deltas = _padded(command.deltas, self.axes)
             self.follower = Follower(deltas, max(abs(d) for d in deltas))
 

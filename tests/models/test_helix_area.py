@@ -17,7 +17,7 @@ import pytest
 
 from models.dda_axes import check_move, iterate_axes
 from models.dda_model import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, iterate, plan_arc
-from models.dda_plan import ArcCommand
+from models.dda_plan import ArcCommand, AxesLineCommand
 from models.helix_area import arc_area, area_width
 
 PLANES = {"G17": (0, 1), "G18": (2, 0), "G19": (1, 2)}
@@ -200,3 +200,8 @@ def test_every_helix_axis_of_a_move_follows_the_area_on_its_own(seed):
             rise = helix[axis]
             assert point[axis] == (1 if rise >= 0 else -1) * ((area.total // 2 + abs(rise) * swept) // area.total)
     assert positions[-1][1] == helix[1] and positions[-1][3:] == helix[3:]
+
+
+def test_a_line_has_no_helix_area():
+    with pytest.raises(ValueError, match="helix_area"):
+        iterate_axes(AxesLineCommand((3, 1, 2)), helix_area=10)
