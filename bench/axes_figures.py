@@ -15,7 +15,16 @@ figures):
   same parameter ``h k / K`` (per iteration) and at the same angle
   ``h theta_k / Theta`` (per angle), and the lag ``|k / K - theta_k / Theta| * K``
   (iterations); the per-angle figure also for the helices whose rise is at
-  most K / 5 (about 0.2 step an iteration: a pitch angle up to about 11 degrees).
+  most K / 5 (about 0.2 step an iteration: a pitch angle up to about 11 degrees);
+* the same helices by swept area (``models/helix_area.py``, AREA W the arc's
+  ``arc_area``): at every arc step the largest deviation from ``h A_k / W``
+  (per area, A_k the area swept so far), from the ideal helix at the same
+  angle (per angle), and the 3-D distance from the ideal helix's point at
+  that angle (the axial and the radial deviation, sqrt(a^2 + r^2)); how many
+  of the helices the host's rule ``|h| max w <= W`` takes (fit), the
+  figures over those and over every helix, the ITERATIONS rule's per angle
+  over those that fit, and the steepest rise the rule takes
+  (``W // max w``) as a fraction of K.
 """
 import argparse
 import math
@@ -27,6 +36,7 @@ from models.axes import AXIS_NAMES, PLANES
 from models.dda_axes import iterate_axes, with_iterations
 from models.dda_build import IMPROVED, VARIANT_NAMES, WEIGHTED
 from models.dda_plan import ArcCommand, AxesLineCommand, plan_arc
+from models.helix_area import arc_area
 
 GENTLE = 5  # rise at most K / GENTLE: within one step of the ideal helix at the same angle
 
@@ -112,6 +122,61 @@ def helix_deviation(command):
     return per_iteration, per_angle, lag
 
 
+def area_deviation(command):
+    """(per area, per angle, 3-D, fits, steepest / K) of ``command``'s helix by swept area: the largest over
+    its arc steps; steepest: the largest rise the host's rule takes, W // max w."""
+    area = arc_area(command)
+    path = iterate_axes(command, helix_area=area.total)
+    u, v = command.plane
+    axis = command.helix_axes[0]
+    rise, theta, sense = command.helix[axis], sweep(command), 1 if command.ccw else -1
+    radius = math.hypot(command.xs, command.ys)
+    turned, last, swept = 0.0, math.atan2(command.ys, command.xs), 0
+    per_area = per_angle = distance = 0.0
+    previous = path.start
+    for point in path.positions()[1:]:
+        step_u, step_v = point[u] != previous[u], point[v] != previous[v]
+        swept += abs(previous[v]) * step_u + abs(previous[u]) * step_v   # |u dv - v du|
+        moved, previous = step_u or step_v, point
+        if not moved:
+            continue
+        angle = math.atan2(point[v], point[u])
+        turned += math.remainder(angle - last, math.tau) * sense
+        last = angle
+        axial = abs(point[axis] - rise * turned / theta)
+        per_area = max(per_area, abs(point[axis] - Fraction(rise * swept, area.total)))
+        per_angle = max(per_angle, axial)
+        distance = max(distance, math.hypot(axial, math.hypot(point[u], point[v]) - radius))
+    return float(per_area), per_angle, distance, area.fits(rise), area.total // area.largest / area.iterations
+
+
+def area_table(results):
+    """Rows of the helix-by-area table: ``results`` [(variant, plane, ccw, area_deviation)]."""
+    print(f"\nby swept area\n{'variant':<12} {'plane':<6} {'dir':<4} {'helices':>7} {'fit':>4} {'per area':>9} "
+          f"{'per angle':>10} {'3-D':>7} {'angle all':>10} {'3-D all':>8} {'it angle':>9}")
+    overall, total, fit = [0.0] * 6, 0, 0
+    for key in dict.fromkeys(r[:3] for r in results):
+        rows = [r[3] for r in results if r[:3] == key]
+        fitting = [r for r in rows if r[3]]
+        figures = (max((r[0] for r in fitting), default=0.0), max((r[1] for r in fitting), default=0.0),
+                   max((r[2] for r in fitting), default=0.0), max(r[1] for r in rows), max(r[2] for r in rows),
+                   max((r[5] for r in fitting), default=0.0))
+        overall = [max(a, b) for a, b in zip(overall, figures)]
+        total, fit = total + len(rows), fit + len(fitting)
+        variant, code, ccw = key
+        print(f"{VARIANT_NAMES[variant]:<12} G{code:<5} {'ccw' if ccw else 'cw':<4} {len(rows):>7} {len(fitting):>4} "
+              + " ".join(f"{f:{w}.3f}" for f, w in zip(figures, (9, 10, 7, 10, 8, 9))))
+    print(f"{'all':<12} {'':<6} {'':<4} {total:>7} {fit:>4} "
+          + " ".join(f"{f:{w}.3f}" for f, w in zip(overall, (9, 10, 7, 10, 8, 9))))
+    for variant in dict.fromkeys(r[0] for r in results):
+        ratios = [r[3][4] for r in results if r[0] == variant]
+        print(f"{VARIANT_NAMES[variant]}: the steepest rise the rule takes (W // max w): "
+              f"{min(ratios):.3f} .. {max(ratios):.3f} K")
+    print("\nper area: |z - h A_k / W|; per angle: |z - h theta_k / Theta|; 3-D: from the ideal helix's point at "
+          "that angle; fit: |h| max w <= W (the columns before 'all' over those); it angle: per angle of the "
+          "ITERATIONS rule over the same helices that fit")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m bench.axes_figures", description=__doc__.split("\n\n")[0])
     parser.add_argument("--lines", type=int, default=100, help="random lines per axis count (default 100)")
@@ -132,6 +197,7 @@ def main(argv=None):
           f"{'gentle':>8} {'lag (it)':>9}")
     overall = [0.0, 0.0, 0.0, 0.0]
     total = 0
+    by_area = []
     chosen = [code for code, name in VARIANT_NAMES.items() if name in options.variants.split(",")]
     for variant in chosen:
         for code, plane in PLANES.items():
@@ -141,6 +207,7 @@ def main(argv=None):
                     command = random_helix(rng, variant, plane, ccw)
                     gentle = abs(command.helix[command.helix_axes[0]]) * GENTLE <= command.iterations
                     rows.append((*helix_deviation(command), gentle))
+                    by_area.append((variant, code, ccw, area_deviation(command) + (rows[-1][1],)))
                 figures = (max(r[0] for r in rows), max(r[1] for r in rows),
                            max((r[1] for r in rows if r[3]), default=0.0), max(r[2] for r in rows))
                 overall = [max(a, b) for a, b in zip(overall, figures)]
@@ -151,6 +218,7 @@ def main(argv=None):
           f"{overall[3]:9.3f}")
     print(f"\nper iter: |z - h k / K|; per angle: |z - h theta_k / Theta|; gentle: per angle for rise <= K / "
           f"{GENTLE}; lag: |k / K - theta_k / Theta| * K; steps of the helix axis ({', '.join(AXIS_NAMES[:3])})")
+    area_table(by_area)
     return 0
 
 

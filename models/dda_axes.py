@@ -18,7 +18,9 @@
   direction per axis (``AxesStep``); ``iterate_axes`` runs a move to its end.
   A move ends when the arc (if any) and every axis have ended, so a wrong
   ITERATIONS still ends every axis on its end point (the helix then leads
-  or lags the arc).
+  or lags the arc).  ``helix_area=W``: the helix follows the area the arc
+  sweeps instead, AREA ``W`` (``models/helix_area.py``: within one step of
+  the ideal helix at the same angle; the card still takes ITERATIONS).
 
 ``check_move`` holds the card's RANGE rules of the N-axis form
 (``check_pulse`` those of a PULSE's axes); the iterators apply it, and ``plan_arc`` (``models/dda_plan.py``) the arc's own.
@@ -31,6 +33,7 @@ from models.axes import AXIS_NAMES, MAX_AXES, XY, names
 from models.dda_build import ALL_VARIANTS
 from models.dda_model import ArcIterator, iterations_left_bound, run_to_end  # noqa: F401
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand, check_width
+from models.helix_area import AreaFollower, area_increment, area_width
 
 MAX_ITERATIONS = (1 << 32) - 1  # ARC's ITERATIONS operand is an unsigned 32-bit word
 
@@ -90,15 +93,17 @@ def needed_axes(command):
     return max((reversed_xy,) + tuple(axis + 1 for axis in command.plane + _moving(command.helix)))
 
 
-def check_move(command, axes=MAX_AXES, coord_width=24):
+def check_move(command, axes=MAX_AXES, coord_width=24, helix_area=None):
     """``command`` if a card with ``axes`` axes and ``coord_width``-bit
-    coordinates takes it (the RANGE rules of docs/axes.md); ValueError else."""
+    coordinates takes it (the RANGE rules of docs/axes.md); ValueError else.
+    ``helix_area``: the helix follows the swept area, AREA ``helix_area``
+    (1 .. 2^area_width - 1) instead of ITERATIONS."""
     if isinstance(command, LineCommand):
         deltas = command.deltas
     elif isinstance(command, AxesLineCommand):
         deltas = command.deltas
     elif isinstance(command, ArcCommand):
-        _check_arc_axes(command, axes, coord_width)
+        _check_arc_axes(command, axes, coord_width, helix_area)
         return command
     else:
         raise ValueError(f"not a DDA move: {command!r}")
@@ -124,7 +129,7 @@ def _check_axes(values, axes, what):
         raise ValueError(f"{what}: axis {names(beyond)} is not on a card with {axes} axes ({names(range(axes))})")
 
 
-def _check_arc_axes(command, axes, coord_width):
+def _check_arc_axes(command, axes, coord_width, helix_area):
     u, v = command.plane
     if u == v or not (0 <= u < axes and 0 <= v < axes):
         raise ValueError(f"ARC: plane {command.plane} is not two different axes of the card's {axes}")
@@ -136,7 +141,11 @@ def _check_arc_axes(command, axes, coord_width):
         raise ValueError(f"ARC: a helix axis ({names(helix)}) is an axis of the plane ({names((u, v))})")
     for axis in helix:
         check_width(command.helix[axis], coord_width, f"D{AXIS_NAMES[axis]}")
-    if helix:
+    if helix and helix_area is not None:
+        largest = (1 << area_width(coord_width)) - 1
+        if not isinstance(helix_area, int) or not 1 <= helix_area <= largest:
+            raise ValueError(f"ARC: a helix by area needs AREA 1..{largest}, not {helix_area!r}")
+    elif helix:
         if not isinstance(command.iterations, int) or not 1 <= command.iterations <= MAX_ITERATIONS:
             raise ValueError(f"ARC: a helix needs ITERATIONS 1..{MAX_ITERATIONS}, not {command.iterations!r}")
         steepest = max(abs(command.helix[axis]) for axis in helix)
@@ -148,19 +157,23 @@ def _check_arc_axes(command, axes, coord_width):
 class MoveIterator:
     """Iterations of any move on a card with ``axes`` axes (default: as many as it needs)."""
 
-    def __init__(self, command, axes=None, coord_width=24, variants=ALL_VARIANTS, **options):
+    def __init__(self, command, axes=None, coord_width=24, variants=ALL_VARIANTS, helix_area=None, **options):
         self.command = command
         self.axes = needed_axes(command) if axes is None else axes
-        check_move(command, self.axes, coord_width)
+        check_move(command, self.axes, coord_width, helix_area)
         self.arc = None
         self.plane = XY
+        self.by_area = helix_area is not None
         if isinstance(command, ArcCommand):
             self.arc = ArcIterator(command, coord_width, variants=variants, **options)
             self.plane = command.plane
-            self.follower = Follower(_padded(command.helix, self.axes), command.iterations or 0)
+            deltas = _padded(command.helix, self.axes)
+            self.follower = (AreaFollower(deltas, helix_area, coord_width) if self.by_area
+                             else Follower(deltas, command.iterations or 0))
         else:
-            if options:
-                raise ValueError(f"options {sorted(options)} apply to arcs only")
+            given = sorted(options) + (["helix_area"] if helix_area is not None else [])
+            if given:
+                raise ValueError(f"options {given} apply to arcs only")
             deltas = _padded(command.deltas, self.axes)
             self.follower = Follower(deltas, max(abs(d) for d in deltas))
 
@@ -176,10 +189,19 @@ class MoveIterator:
         """One iteration; its ``AxesStep``."""
         if self.finished:
             raise RuntimeError("move already finished")
-        steps = list(self.follower.step()) if not self.follower.finished else [False] * self.axes
-        dirs = list(self.follower.dirs)
+        arc_step = swept = None
         if self.arc is not None and not self.arc.finished:
+            u_before, v_before = self.arc.x, self.arc.y
             arc_step = self.arc.step()
+            swept = area_increment(u_before, v_before, arc_step.step_x, arc_step.step_y)
+        if self.follower.finished:
+            steps = [False] * self.axes
+        elif self.by_area:
+            steps = list(self.follower.step(swept or 0, arc_step is not None))
+        else:
+            steps = list(self.follower.step())
+        dirs = list(self.follower.dirs)
+        if arc_step is not None:
             u, v = self.plane
             steps[u], steps[v] = arc_step.step_x, arc_step.step_y
             dirs[u], dirs[v] = arc_step.dir_x, arc_step.dir_y
@@ -254,6 +276,7 @@ def move_start(command, axes):
 
 
 def iterate_axes(command, axes=None, coord_width=24, max_iterations=None, **options):
-    """Run ``command`` to its end on a card with ``axes`` axes; its ``AxesPath``."""
+    """Run ``command`` to its end on a card with ``axes`` axes; its ``AxesPath``
+    (``options``: ``MoveIterator``'s, ``helix_area`` among them)."""
     iterator = MoveIterator(command, axes, coord_width, **options)
     return run_to_end(iterator, AxesPath(move_start(command, iterator.axes)), max_iterations or 1 << (coord_width + 12))
