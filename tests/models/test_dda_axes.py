@@ -15,8 +15,9 @@ import pytest
 
 from models.dda_axes import (AxesStep, MoveIterator, arc_iterations, check_move, iterate_axes, iterations_left_bound,
                              with_iterations)
-from models.dda_model import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, LineIterator, iterate, plan_arc
+from models.dda_model import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, LineIterator, iterate
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand
+from tests.models.random_arcs import random_arc
 
 # RS274/NGC: G17 is the XY plane seen from +Z, G18 the ZX plane seen from +Y, G19 the YZ plane seen from +X;
 # G3 turns counter-clockwise as seen from there.
@@ -95,18 +96,7 @@ def ideal_sweep(command):
 def random_helix(rng, plane, ccw, variant=PRECISE, radius=None, steep=None):
     """A seeded random helical arc about the origin in ``plane``, the one other axis of X, Y, Z rising."""
     other = 3 - sum(plane)
-    while True:
-        r = radius or rng.uniform(20, 120)
-        start = rng.uniform(0, math.tau)
-        end = start + (1 if ccw else -1) * rng.uniform(math.pi / 2, math.tau)
-        command = ArcCommand(round(r * math.cos(start)), round(r * math.sin(start)), round(r * math.cos(end)),
-                             round(r * math.sin(end)), ccw, variant, rng.randrange(4) if variant in (1, 2) else 0,
-                             plane=plane)
-        try:
-            plan_arc(command)
-        except ValueError:
-            continue
-        break
+    command = random_arc(rng, plane, ccw, variant, radius)
     total = len(iterate(command).steps)  # K, from the two-axis golden model
     rise = max(1, round(total * (steep if steep is not None else rng.random())))
     helix = [0, 0, 0]

@@ -19,27 +19,12 @@ from models.dda_axes import check_move, iterate_axes
 from models.dda_model import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, iterate, plan_arc
 from models.dda_plan import ArcCommand, AxesLineCommand
 from models.helix_area import arc_area, area_width
+from tests.models.random_arcs import random_arc
 
 PLANES = {"G17": (0, 1), "G18": (2, 0), "G19": (1, 2)}
 # docs/axes.md: a precise helix by area is within this many steps of the ideal helix at the
 # same angle (0.58 the most measured over the 600 helices of bench.axes_figures)
 PRECISE_PER_ANGLE = 0.75
-
-
-def random_arc(rng, plane, ccw, variant=PRECISE, radius=None):
-    """A seeded random arc about the origin in ``plane`` that the model accepts."""
-    while True:
-        r = radius or rng.uniform(20, 120)
-        start = rng.uniform(0, math.tau)
-        end = start + (1 if ccw else -1) * rng.uniform(math.pi / 2, math.tau)
-        command = ArcCommand(round(r * math.cos(start)), round(r * math.sin(start)), round(r * math.cos(end)),
-                             round(r * math.sin(end)), ccw, variant, rng.randrange(4) if variant in (1, 2) else 0,
-                             plane=plane)
-        try:
-            plan_arc(command)
-        except ValueError:
-            continue
-        return command
 
 
 def with_rise(command, rise):
