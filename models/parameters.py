@@ -162,7 +162,9 @@ _TABLE = (
               reason="4: the FIFO promises the PCI target three free places (LocalBus.room) before it "
               "acknowledges a posted dword; STATUS.FIFO_LEVEL, 16 bits, counts 0..depth",
               device_maximum={"ice40": (4096, "the iCE40 HX8K has 32 block RAMs of 4 Kbit, "
-                                                "4,096 32-bit words in all")}),
+                                                "4,096 32-bit words in all"),
+                              "ecp5": (16384, "the ECP5 LFE5U-25F has 56 block RAMs of 512 36-bit words, "
+                                              "28,672 32-bit words in all")}),
     Parameter("clock_hz", 33_333_333, "PCI clock the card runs at, in Hz, reported in CLOCK_HZ "
               "(the host converts times with it)", 1, 33_333_333,
               reason="PCI 2.3 clocks a device that does not claim 66 MHz at up to 33.33 MHz"),

@@ -74,6 +74,10 @@ def test_device_limit_applies_to_its_device_only():
     assert FIFO_DEPTH.check(4096, "ice40") == 4096
     with pytest.raises(ParameterError, match="ice40"):
         FIFO_DEPTH.check(8192, "ice40")
+    # ECP5 LFE5U-25F: 56 EBRs of 512 x 36 bits hold 28,672 words; the next power of two down is 16,384
+    assert FIFO_DEPTH.check(16384, "ecp5") == 16384
+    with pytest.raises(ParameterError, match="ecp5"):
+        FIFO_DEPTH.check(32768, "ecp5")
 
 
 def test_every_default_is_within_its_range():
