@@ -29,6 +29,13 @@ SLOW_CASES = {
     "tests/rtl/test_lint.py::test_verilator_lint_is_clean[ice40-": "another build of the units gen/ holds",
     "tests/rtl/test_lint.py::test_icarus_compiles[generic-": "another build of the units gen/ holds",
     "tests/rtl/test_lint.py::test_icarus_compiles[ice40-": "another build of the units gen/ holds",
+    "tests/rtl/test_lint.py::test_verilator_lint_is_clean[ecp5-": "another build of the units gen/ holds; its "
+        "LUT4 branch compiles by default in test_pin_lut and sim/card/test_card_build",
+    "tests/rtl/test_lint.py::test_icarus_compiles[ecp5-": "another build of the units gen/ holds; its LUT4 branch "
+        "compiles by default in test_pin_lut and sim/card/test_card_build",
+    "tests/rtl/test_lint.py::test_vendor_primitives_only_where_the_device_asks_and_every_axis_has_pins[ecp5]":
+        "a four-axis conversion of its own; the ecp5 card.v's LUT4 cells run by default in "
+        "sim/card/test_card_build",
     "tests/formal/test_formal.py::test_fast_group_proves[pci_protocol]": "a proof of about 100 s",
     "tests/formal/test_formal.py::test_fast_group_proves[regs_fifo_table]": "a proof of about 50 s",
     "tests/formal/test_formal.py::test_fast_group_proves[card_status]": "a proof of over 30 s",

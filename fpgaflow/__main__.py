@@ -19,7 +19,7 @@ def _parser():
     parser.add_argument("units", nargs="*", help="units to synthesise (default: top, else every unit in gen/)")
     parser.add_argument("--family", choices=sorted(FAMILIES), default="ice40",
                         help="ice40: iCE40 HX8K ct256 (default); ecp5: ECP5 LFE5U-25F CABGA256, "
-                             "for the generic build")
+                             "for the ecp5 build (rtl.top --convert --device ecp5) or the generic one")
     parser.add_argument("--freq", type=float, default=PCI_MHZ, help="target clock in MHz (default: 33)")
     parser.add_argument("--seed", type=int, default=1, help="first nextpnr placement seed (default: 1)")
     parser.add_argument("--sweep", type=int, default=SWEEP_SEEDS, metavar="N",

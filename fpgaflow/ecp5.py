@@ -1,10 +1,12 @@
 """Lattice ECP5 LFE5U-25F (CABGA256, speed 6): yosys ``synth_ecp5``, nextpnr-ecp5, ``constraints/ecp5_25k_cabga256.lpf``.
 
-For the generic build only (plain Verilog, no vendor primitive): the flow
-stops on Verilog that instantiates another family's cells.  The pads are nextpnr's own
-``TRELLIS_IO`` (``<pin>$tr_io``); their registers, when a build wants
-them, would be ``IOLOGIC`` cells, which the generic build does not
-instantiate, so every PCI boundary flip-flop is a fabric flip-flop.
+For the ``ecp5`` build (``--device ecp5``: the PCI target's pin paths are
+``LUT4`` cells, ``rtl/ecp5.py``) and the generic one (plain Verilog, no
+vendor primitive); the flow stops on Verilog that instantiates iCE40
+cells.  The pads are nextpnr's own ``TRELLIS_IO`` (``<pin>$tr_io``) in
+both; their registers, when a build wants them, would be ``IOLOGIC``
+cells, which neither build instantiates, so every PCI boundary flip-flop
+is a fabric flip-flop.
 
 nextpnr-ecp5's delay model starts and ends at the pad cell: it has no pad
 buffer delay and a zero-delay clock tree.  Pin figures are nextpnr's
@@ -40,12 +42,12 @@ class Ecp5(Family):
         return cell["type"] == "TRELLIS_FF"
 
     def check_sources(self, sources):
-        """SynthError if the Verilog instantiates iCE40 cells: ECP5 takes the generic build."""
+        """SynthError if the Verilog instantiates iCE40 cells: ECP5 takes the ecp5 or the generic build."""
         for path in sources:
             found = _ICE40_CELL.search(Path(path).read_text())
             if found:
-                raise SynthError(f"{path} instantiates the iCE40 cell {found[1]}: ECP5 takes the generic build "
-                                 "(python -m rtl.top --convert --device generic)")
+                raise SynthError(f"{path} instantiates the iCE40 cell {found[1]}: ECP5 takes the ecp5 build "
+                                 "(python -m rtl.top --convert --device ecp5) or the generic one")
 
 
 ECP5 = Ecp5(

@@ -5,10 +5,14 @@ the ``SB_IO`` cells the pads instantiate tell which PCI pins have their
 registers in the I/O cell (``pin_type_registers``).
 """
 import json
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
 from fpgaflow.family import CONSTRAINTS, Family
+from fpgaflow.tools import SynthError
+
+_ECP5_CELL = re.compile(r"^\s*(?:\(\*.*?\*\)\s*)?(LUT4)\s*#", re.MULTILINE)  # an ECP5 LUT4 instantiated
 
 # iCE40 HX data sheet, typical PIO/PLB timing (LVCMOS, 1.2 V core), in ns:
 # the parts of a pin-to-pin figure that nextpnr's model leaves out.
@@ -49,6 +53,14 @@ class Ice40(Family):
         if figure == "io-reg":
             return round(self.pad("tGBCKIO") + self.pad("tOCKO"), 2)
         return round(self.pad("tGBCKLC") + figure + self.pad("tPADO"), 2)
+
+    def check_sources(self, sources):
+        """SynthError if the Verilog instantiates ECP5 cells: iCE40 takes the ice40 or the generic build."""
+        for path in sources:
+            found = _ECP5_CELL.search(Path(path).read_text())
+            if found:
+                raise SynthError(f"{path} instantiates the ECP5 cell {found[1]}: iCE40 takes the ice40 build "
+                                 "(python -m rtl.top --convert, the top's default) or the generic one")
 
     def _parse_pins(self, text):
         pins = {}

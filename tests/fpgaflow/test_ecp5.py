@@ -4,6 +4,7 @@ The flow's own figures must agree with nextpnr-ecp5's report: the worst
 register-to-register path with its fmax, the worst pin-to-register and
 register-to-pin paths with the ``<async>`` paths of the report.
 """
+import json
 import subprocess
 import sys
 
@@ -35,6 +36,28 @@ input clock;
 input a;
 output y;
 SB_LUT4 #(.LUT_INIT(16'h5555)) invert (.O(y), .I0(a), .I1(1'b0), .I2(1'b0), .I3(1'b0));
+endmodule
+"""
+
+# As the ecp5 build writes a pin LUT (rtl/ecp5.py): the register's next value is a kept
+# LUT4 of the pin and of a register, which must reach the placed netlist as one cell.
+ECP5_CELL_UNIT = """module ecp5_cell_unit (clock, reset, pin, e, y);
+input clock;
+input reset;
+input pin;
+input e;
+output reg y;
+reg held;
+wire next;
+`ifdef SYNTHESIS
+(* keep *) LUT4 #(.INIT(16'h6666)) pin_lut (.A(pin), .B(held), .C(1'b0), .D(1'b0), .Z(next));
+`else
+assign next = pin ^ held;
+`endif
+always @(posedge clock, negedge reset) begin: ecp5_cell_unit_step
+    if (reset == 0) begin y <= 0; held <= 0; end
+    else begin held <= e ^ y; if (e) y <= next; end
+end
 endmodule
 """
 
@@ -72,8 +95,24 @@ def test_pin_figures_agree_with_nextpnrs_report(figures):
 
 def test_refuses_ice40_cells(tmp_path):
     (tmp_path / "ice40_cell_unit.v").write_text(ICE40_CELL_UNIT)
-    with pytest.raises(fpgaflow.SynthError, match="generic build"):
+    with pytest.raises(fpgaflow.SynthError, match="ECP5 takes the ecp5 build"):
         fpgaflow.synthesize("ice40_cell_unit", family="ecp5", gen_dir=tmp_path, build=tmp_path / "ecp5")
+
+
+def test_ice40_refuses_ecp5_cells(tmp_path):
+    (tmp_path / "ecp5_cell_unit.v").write_text(ECP5_CELL_UNIT)
+    with pytest.raises(fpgaflow.SynthError, match="ECP5 cell LUT4: iCE40 takes the ice40 build"):
+        fpgaflow.synthesize("ecp5_cell_unit", family="ice40", gen_dir=tmp_path, build=tmp_path / "ice40")
+
+
+def test_ecp5_lut_cell_is_kept_and_its_pin_one_cell_from_the_register(tmp_path):
+    (tmp_path / "ecp5_cell_unit.v").write_text(ECP5_CELL_UNIT)
+    figures = fpgaflow.synthesize("ecp5_cell_unit", family="ecp5", gen_dir=tmp_path, build=tmp_path / "ecp5",
+                                  timeout=TOOL_TIMEOUT_S)
+    assert figures["placed"] and figures["pins"]["pin"]["in_cells"] == 1
+    routed = json.loads((tmp_path / "ecp5" / "ecp5_cell_unit" / "ecp5_cell_unit_routed.json").read_text())
+    (cells,) = [module["cells"] for module in routed["modules"].values()]   # the unit, as the flow's top
+    assert cells["pin_lut"]["type"] == "TRELLIS_COMB", sorted(cells)
 
 
 @pytest.mark.slow(reason="a conversion and about 1.5 minutes of place and route a seed; the ECP5 flow on a small unit runs by default")

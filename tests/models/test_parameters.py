@@ -74,6 +74,10 @@ def test_device_limit_applies_to_its_device_only():
     assert FIFO_DEPTH.check(4096, "ice40") == 4096
     with pytest.raises(ParameterError, match="ice40"):
         FIFO_DEPTH.check(8192, "ice40")
+    # ECP5 LFE5U-25F: 56 EBRs of 512 x 36 bits hold 28,672 words; the next power of two down is 16,384
+    assert FIFO_DEPTH.check(16384, "ecp5") == 16384
+    with pytest.raises(ParameterError, match="ecp5"):
+        FIFO_DEPTH.check(32768, "ecp5")
 
 
 def test_every_default_is_within_its_range():
@@ -134,7 +138,7 @@ def test_the_build_record_holds_the_documented_defaults():
     (dict(clock_hz=0), "clock_hz must be 1..33,333,333 (PCI 2.3 clocks a device that does not claim 66 MHz "
      "at up to 33.33 MHz), not 0"),
     (dict(variants="weighted"), "variants must be improved,precise or all, not 'weighted'"),
-    (dict(device="ecp5"), "device must be generic or ice40, not 'ecp5'"),
+    (dict(device="xc7"), "device must be generic, ice40 or ecp5, not 'xc7'"),
     (dict(vendor_id=0xFFFF), "vendor_id must be 0x0000..0xFFFE (0xFFFF reads as no device), not 0xFFFF"),
 ])
 def test_a_bad_value_is_refused_where_the_build_is_made_with_the_tables_message(values, message):

@@ -35,7 +35,7 @@ RANGES = {
     "--io-bar-bits": ("2..8", ["2", "8"]),
     "--mem-bar-bits": ("4..24", ["4", "24"]),
     "--reg-bar-bits": ("4..16", ["4", "16"]),
-    "--device": ("generic or ice40", ["generic", "ice40"]),
+    "--device": ("generic, ice40 or ecp5", ["generic", "ice40", "ecp5"]),
     "--variants": ("improved,precise or all", ["improved,precise", "all"]),
     "--encoders": ("0..1", ["0", "1"]),   # a bare option on the command line (issue 27)
 }
@@ -55,7 +55,7 @@ BAD_VALUES = {
     "--io-bar-bits": ["1", "9"],
     "--mem-bar-bits": ["3", "25"],
     "--reg-bar-bits": ["3", "17"],
-    "--device": ["xilinx", "ICE40", "", "ecp5"],
+    "--device": ["xilinx", "ICE40", "", "ecp5u"],
     "--variants": ["precise", "improved", "precise,improved", "ALL", "all,precise"],
     "--encoders": ["1", "0", "2", "yes"],   # bare: a value after it is refused
 }

@@ -1,5 +1,5 @@
 """The simulation model of the PCI target's pin LUTs (``rtl.pci.pin_lut.lut_verilog``,
-both devices) in Icarus: with an input floating (Z) or X, the output is X only where the
+every device) in Icarus: with an input floating (Z) or X, the output is X only where the
 function depends on that input; elsewhere it is the function's value.  The
 expected values come from the Python function itself, evaluated for both
 values of the floating input."""
@@ -46,7 +46,7 @@ def expected(function, case):
 
 
 @pytest.mark.skipif(shutil.which("iverilog") is None, reason="needs Icarus Verilog")
-@pytest.mark.parametrize("device", ["generic", "ice40"])
+@pytest.mark.parametrize("device", ["generic", "ice40", "ecp5"])
 @pytest.mark.parametrize("count, seed", [(1, 1), (2, 2), (3, 3), (4, 4), (4, 5), (4, 6)])
 def test_an_input_the_output_does_not_depend_on_cannot_make_it_x(tmp_path, count, seed, device):
     rng = random.Random(seed)

@@ -7,8 +7,8 @@ inputs.  The expected output comes from the Python function alone: where
 every way of reading the X/Z inputs as 0/1 gives the same value, the output
 must be that value (a floating input the output does not depend on must
 not make it X); where they disagree, X (never Z: a LUT does not float).
-The ``ice40`` build's ``SB_LUT4`` branch (``ifdef SYNTHESIS``) is checked
-against yosys's own cell model.
+The ``ice40`` build's ``SB_LUT4`` branch and the ``ecp5`` build's ``LUT4``
+branch (``ifdef SYNTHESIS``) are checked against yosys's own cell models.
 """
 import itertools
 import random
@@ -72,7 +72,7 @@ def run_icarus(tmp_path, text, *extra):
     return [line for line in run.stdout.splitlines() if set(line) <= set("01xz")]
 
 
-@pytest.mark.parametrize("device", ["generic", "ice40"])
+@pytest.mark.parametrize("device", ["generic", "ice40", "ecp5"])
 def test_simulation_model_is_x_only_where_the_output_depends_on_x(device, tmp_path):
     rows = run_icarus(tmp_path, bench(device))
     combinations = list(itertools.product(LEVELS, repeat=4))
@@ -91,19 +91,40 @@ def test_generic_lut_is_plain_logic_and_ice40_a_cell_under_synthesis():
     assert ice40[1] == "SB_LUT4 #(.LUT_INIT(16'h8888)) o_lut (.O(o), .I0(a), .I1(b), .I2(1'b0), .I3(1'b0));"
 
 
+def test_ecp5_lut_is_a_kept_lut4_cell_under_synthesis_in0_on_a():
+    generic = lut_verilog("o", "o_lut", ["a", "b"], lambda a, b: a & b, device="generic")
+    ecp5 = lut_verilog("o", "o_lut", ["a", "b"], lambda a, b: a & b, device="ecp5")
+    assert ecp5[0] == "`ifdef SYNTHESIS" and ecp5[2:] == ["`else", generic[0], "`endif"]
+    # INIT bit D*8 + C*4 + B*2 + A: a AND b is 1 at 3, 7, 11, 15 (C, D tied to 0 but filled alike)
+    assert ecp5[1] == "(* keep *) LUT4 #(.INIT(16'h8888)) o_lut (.A(a), .B(b), .C(1'b0), .D(1'b0), .Z(o));"
+    # PCI's SERR# enable: (PAR XOR bus parity) AND armed is 1 at A^B & C: 5, 6, 13, 14
+    serr = lut_verilog("o", "o_lut", ["par", "parity", "armed"], lambda p, q, armed: (p ^ q) & armed,
+                       device="ecp5")
+    assert serr[1] == ("(* keep *) LUT4 #(.INIT(16'h6060)) o_lut (.A(par), .B(parity), .C(armed), .D(1'b0), "
+                       ".Z(o));")
+
+
 def test_expression_leaves_out_inputs_the_function_ignores():
     assert lut_expression(["a", "b", "c"], lambda a, b, c: b) == "(b ? 1'b1 : 1'b0)"
     assert lut_expression(["a", "b"], lambda a, b: 1) == "1'b1"
     assert lut_expression(["a", "b"], lambda a, b: 1 - a) == "(a ? 1'b0 : 1'b1)"
 
 
-def test_sb_lut4_cells_compute_the_truth_table(tmp_path):
-    """The ``ifdef SYNTHESIS`` branch, with yosys's iCE40 cell model: every 0/1 input."""
-    from sim.card.top_harness import ICE40_DEFINES, ice40_cell_model
+def _cell_model(device):
+    """Icarus options for yosys's cell model of ``device``'s LUT."""
+    from sim.card.top_harness import ICE40_DEFINES, ecp5_lut_model, ice40_cell_model
 
-    rows = run_icarus(tmp_path, bench("ice40"), "-DSYNTHESIS", *(f"-D{name}" for name in ICE40_DEFINES),
-                      "-l", str(ice40_cell_model()))
+    if device == "ice40":
+        return [*(f"-D{name}" for name in ICE40_DEFINES), "-l", str(ice40_cell_model())]
+    return ["-l", str(ecp5_lut_model())]
+
+
+@pytest.mark.parametrize("device", ["ice40", "ecp5"])
+def test_lut_cells_compute_the_truth_table(device, tmp_path):
+    """The ``ifdef SYNTHESIS`` branch, with yosys's cell model (``SB_LUT4``, ``LUT4``): every 0/1 input."""
+    rows = run_icarus(tmp_path, bench(device), "-DSYNTHESIS", *_cell_model(device))
     combinations = list(itertools.product(LEVELS, repeat=4))
+    assert len(rows) == len(combinations)
     for levels, row in zip(combinations, rows):
         if set(levels) <= set("01"):
             for k, (inputs, function) in enumerate(FUNCTIONS):
