@@ -6749,16 +6749,16 @@ end
 
 
 assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word68_shown);
-assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
+assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 1);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_prescaler
     if (reset == 0) begin
-        card_core0_regs_fifo1_input_filter1_prescale <= 0;
+        card_core0_regs_fifo1_input_filter1_prescale <= 1;
     end
     else begin
         if (card_core0_regs_fifo1_input_filter1_sample) begin
-            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word70_shown - 1);
+            card_core0_regs_fifo1_input_filter1_prescale <= card_core0_regs_fifo1_reg_word70_shown;
         end
         else begin
             card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);

@@ -5252,16 +5252,16 @@ end
 
 
 assign input_filter0_level = (input_filter0_inputs_raw ^ reg_word27_shown);
-assign input_filter0_sample = (input_filter0_prescale == 0);
+assign input_filter0_sample = (input_filter0_prescale == 1);
 
 
 always @(posedge clock, negedge reset) begin: input_filter0_prescaler
     if (reset == 0) begin
-        input_filter0_prescale <= 0;
+        input_filter0_prescale <= 1;
     end
     else begin
         if (input_filter0_sample) begin
-            input_filter0_prescale <= (reg_word29_shown - 1);
+            input_filter0_prescale <= reg_word29_shown;
         end
         else begin
             input_filter0_prescale <= (input_filter0_prescale - 1);

@@ -7580,16 +7580,16 @@ end
 
 
 assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word109_shown);
-assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
+assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 1);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_prescaler
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_input_filter2_prescale <= 0;
+        card1_card_core1_regs_fifo2_input_filter2_prescale <= 1;
     end
     else begin
         if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
-            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word111_shown - 1);
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= card1_card_core1_regs_fifo2_reg_word111_shown;
         end
         else begin
             card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
