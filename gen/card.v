@@ -975,12 +975,11 @@ wire card_core0_regs_fifo1_feed_rate1_count_empty;
 wire card_core0_regs_fifo1_feed_rate1_count_last;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_count_up;
 reg card_core0_regs_fifo1_feed_rate1_decelerate;
-reg [16:0] card_core0_regs_fifo1_feed_rate1_floor_limit;
-reg [16:0] card_core0_regs_fifo1_feed_rate1_lower_limit;
 wire [15:0] card_core0_regs_fifo1_feed_rate1_lowered;
+wire signed [16:0] card_core0_regs_fifo1_feed_rate1_lowered_full;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_phase;
-reg signed [16:0] card_core0_regs_fifo1_feed_rate1_raise_limit;
 wire [15:0] card_core0_regs_fifo1_feed_rate1_raised;
+wire [16:0] card_core0_regs_fifo1_feed_rate1_raised_full;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_rate;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_start_s;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_step_s;
@@ -6030,22 +6029,16 @@ assign card_core0_regs_fifo1_motion_run = (card_core0_regs_fifo1_sequencer1_stat
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_register_settings
     if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_start_s <= 0;
+        card_core0_regs_fifo1_feed_rate1_step_s <= 0;
         card_core0_regs_fifo1_feed_rate1_target_s <= 0;
         card_core0_regs_fifo1_feed_rate1_step_zero <= 1;
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= 0;
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= 0;
-        card_core0_regs_fifo1_feed_rate1_step_s <= 0;
-        card_core0_regs_fifo1_feed_rate1_start_s <= 0;
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
         card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word51_shown;
         card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word52_shown;
         card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
         card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word51_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word51_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word52_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -6062,15 +6055,20 @@ end
 
 
 assign card_core0_regs_fifo1_feed_rate1_total = ({1'b0, card_core0_regs_fifo1_feed_rate1_phase} + {1'b0, card_core0_regs_fifo1_feed_rate1_rate});
-assign card_core0_regs_fifo1_feed_rate1_raised = (card_core0_regs_fifo1_feed_rate1_rate + card_core0_regs_fifo1_feed_rate1_step_s);
-assign card_core0_regs_fifo1_feed_rate1_lowered = (card_core0_regs_fifo1_feed_rate1_rate - card_core0_regs_fifo1_feed_rate1_step_s);
-assign card_core0_regs_fifo1_feed_rate1_can_raise = ($signed({1'b0, card_core0_regs_fifo1_feed_rate1_rate}) <= card_core0_regs_fifo1_feed_rate1_raise_limit);
-assign card_core0_regs_fifo1_feed_rate1_can_lower = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= card_core0_regs_fifo1_feed_rate1_lower_limit);
-assign card_core0_regs_fifo1_feed_rate1_above_floor = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= card_core0_regs_fifo1_feed_rate1_floor_limit);
+assign card_core0_regs_fifo1_feed_rate1_raised_full = (card_core0_regs_fifo1_feed_rate1_rate + card_core0_regs_fifo1_feed_rate1_step_s);
+assign card_core0_regs_fifo1_feed_rate1_lowered_full = ($signed({1'b0, card_core0_regs_fifo1_feed_rate1_rate}) - $signed({1'b0, card_core0_regs_fifo1_feed_rate1_step_s}));
 assign card_core0_regs_fifo1_feed_rate1_below = (card_core0_regs_fifo1_feed_rate1_rate < card_core0_regs_fifo1_feed_rate1_target_s);
 assign card_core0_regs_fifo1_feed_rate1_above = (card_core0_regs_fifo1_feed_rate1_rate > card_core0_regs_fifo1_feed_rate1_target_s);
 assign card_core0_regs_fifo1_feed_rate1_count_empty = (card_core0_regs_fifo1_feed_rate1_count == 2);
 assign card_core0_regs_fifo1_feed_rate1_count_last = (card_core0_regs_fifo1_feed_rate1_count == (2 + 1));
+
+
+
+assign card_core0_regs_fifo1_feed_rate1_raised = card_core0_regs_fifo1_feed_rate1_raised_full[16-1:0];
+assign card_core0_regs_fifo1_feed_rate1_lowered = card_core0_regs_fifo1_feed_rate1_lowered_full[16-1:0];
+assign card_core0_regs_fifo1_feed_rate1_can_raise = (card_core0_regs_fifo1_feed_rate1_raised_full <= card_core0_regs_fifo1_feed_rate1_target_s);
+assign card_core0_regs_fifo1_feed_rate1_can_lower = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_target_s}));
+assign card_core0_regs_fifo1_feed_rate1_above_floor = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_start_s}));
 
 
 always @(card_core0_regs_fifo1_feed_rate1_count_empty, card_core0_regs_fifo1_feed_rate1_count) begin: card_core0_regs_fifo1_feed_rate1_count_steps

@@ -870,12 +870,11 @@ wire feed_rate0_count_empty;
 wire feed_rate0_count_last;
 reg [15:0] feed_rate0_count_up;
 reg feed_rate0_decelerate;
-reg [16:0] feed_rate0_floor_limit;
-reg [16:0] feed_rate0_lower_limit;
 wire [15:0] feed_rate0_lowered;
+wire signed [16:0] feed_rate0_lowered_full;
 reg [15:0] feed_rate0_phase;
-reg signed [16:0] feed_rate0_raise_limit;
 wire [15:0] feed_rate0_raised;
+wire [16:0] feed_rate0_raised_full;
 reg [15:0] feed_rate0_rate;
 reg [15:0] feed_rate0_start_s;
 reg [15:0] feed_rate0_step_s;
@@ -4533,22 +4532,16 @@ assign motion_run = (sequencer0_state == 3'b001);
 
 always @(posedge clock, negedge reset) begin: feed_rate0_register_settings
     if (reset == 0) begin
+        feed_rate0_start_s <= 0;
+        feed_rate0_step_s <= 0;
         feed_rate0_target_s <= 0;
         feed_rate0_step_zero <= 1;
-        feed_rate0_lower_limit <= 0;
-        feed_rate0_floor_limit <= 0;
-        feed_rate0_step_s <= 0;
-        feed_rate0_start_s <= 0;
-        feed_rate0_raise_limit <= 0;
     end
     else begin
         feed_rate0_target_s <= reg_word10_shown;
         feed_rate0_start_s <= reg_word11_shown;
         feed_rate0_step_s <= ramp_step;
         feed_rate0_step_zero <= (ramp_step == 0);
-        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_shown}) - $signed({1'b0, ramp_step}));
-        feed_rate0_lower_limit <= ({1'b0, reg_word10_shown} + {1'b0, ramp_step});
-        feed_rate0_floor_limit <= ({1'b0, reg_word11_shown} + {1'b0, ramp_step});
     end
 end
 
@@ -4565,15 +4558,20 @@ end
 
 
 assign feed_rate0_total = ({1'b0, feed_rate0_phase} + {1'b0, feed_rate0_rate});
-assign feed_rate0_raised = (feed_rate0_rate + feed_rate0_step_s);
-assign feed_rate0_lowered = (feed_rate0_rate - feed_rate0_step_s);
-assign feed_rate0_can_raise = ($signed({1'b0, feed_rate0_rate}) <= feed_rate0_raise_limit);
-assign feed_rate0_can_lower = ({1'b0, feed_rate0_rate} >= feed_rate0_lower_limit);
-assign feed_rate0_above_floor = ({1'b0, feed_rate0_rate} >= feed_rate0_floor_limit);
+assign feed_rate0_raised_full = (feed_rate0_rate + feed_rate0_step_s);
+assign feed_rate0_lowered_full = ($signed({1'b0, feed_rate0_rate}) - $signed({1'b0, feed_rate0_step_s}));
 assign feed_rate0_below = (feed_rate0_rate < feed_rate0_target_s);
 assign feed_rate0_above = (feed_rate0_rate > feed_rate0_target_s);
 assign feed_rate0_count_empty = (feed_rate0_count == 2);
 assign feed_rate0_count_last = (feed_rate0_count == (2 + 1));
+
+
+
+assign feed_rate0_raised = feed_rate0_raised_full[16-1:0];
+assign feed_rate0_lowered = feed_rate0_lowered_full[16-1:0];
+assign feed_rate0_can_raise = (feed_rate0_raised_full <= feed_rate0_target_s);
+assign feed_rate0_can_lower = (feed_rate0_lowered_full >= $signed({1'b0, feed_rate0_target_s}));
+assign feed_rate0_above_floor = (feed_rate0_lowered_full >= $signed({1'b0, feed_rate0_start_s}));
 
 
 always @(feed_rate0_count_empty, feed_rate0_count) begin: feed_rate0_count_steps

@@ -998,12 +998,11 @@ wire card1_card_core1_regs_fifo2_feed_rate2_count_empty;
 wire card1_card_core1_regs_fifo2_feed_rate2_count_last;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_up;
 reg card1_card_core1_regs_fifo2_feed_rate2_decelerate;
-reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_floor_limit;
-reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_lower_limit;
 wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_lowered;
+wire signed [16:0] card1_card_core1_regs_fifo2_feed_rate2_lowered_full;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_phase;
-reg signed [16:0] card1_card_core1_regs_fifo2_feed_rate2_raise_limit;
 wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_raised;
+wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_raised_full;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_rate;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_start_s;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_step_s;
@@ -6861,22 +6860,16 @@ assign card1_card_core1_regs_fifo2_motion_run = (card1_card_core1_regs_fifo2_seq
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_register_settings
     if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_target_s <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= 1;
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word92_shown;
         card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word93_shown;
         card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word92_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word92_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word93_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -6893,15 +6886,20 @@ end
 
 
 assign card1_card_core1_regs_fifo2_feed_rate2_total = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_phase} + {1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate});
-assign card1_card_core1_regs_fifo2_feed_rate2_raised = (card1_card_core1_regs_fifo2_feed_rate2_rate + card1_card_core1_regs_fifo2_feed_rate2_step_s);
-assign card1_card_core1_regs_fifo2_feed_rate2_lowered = (card1_card_core1_regs_fifo2_feed_rate2_rate - card1_card_core1_regs_fifo2_feed_rate2_step_s);
-assign card1_card_core1_regs_fifo2_feed_rate2_can_raise = ($signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate}) <= card1_card_core1_regs_fifo2_feed_rate2_raise_limit);
-assign card1_card_core1_regs_fifo2_feed_rate2_can_lower = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= card1_card_core1_regs_fifo2_feed_rate2_lower_limit);
-assign card1_card_core1_regs_fifo2_feed_rate2_above_floor = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= card1_card_core1_regs_fifo2_feed_rate2_floor_limit);
+assign card1_card_core1_regs_fifo2_feed_rate2_raised_full = (card1_card_core1_regs_fifo2_feed_rate2_rate + card1_card_core1_regs_fifo2_feed_rate2_step_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_lowered_full = ($signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate}) - $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_step_s}));
 assign card1_card_core1_regs_fifo2_feed_rate2_below = (card1_card_core1_regs_fifo2_feed_rate2_rate < card1_card_core1_regs_fifo2_feed_rate2_target_s);
 assign card1_card_core1_regs_fifo2_feed_rate2_above = (card1_card_core1_regs_fifo2_feed_rate2_rate > card1_card_core1_regs_fifo2_feed_rate2_target_s);
 assign card1_card_core1_regs_fifo2_feed_rate2_count_empty = (card1_card_core1_regs_fifo2_feed_rate2_count == 2);
 assign card1_card_core1_regs_fifo2_feed_rate2_count_last = (card1_card_core1_regs_fifo2_feed_rate2_count == (2 + 1));
+
+
+
+assign card1_card_core1_regs_fifo2_feed_rate2_raised = card1_card_core1_regs_fifo2_feed_rate2_raised_full[16-1:0];
+assign card1_card_core1_regs_fifo2_feed_rate2_lowered = card1_card_core1_regs_fifo2_feed_rate2_lowered_full[16-1:0];
+assign card1_card_core1_regs_fifo2_feed_rate2_can_raise = (card1_card_core1_regs_fifo2_feed_rate2_raised_full <= card1_card_core1_regs_fifo2_feed_rate2_target_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_can_lower = (card1_card_core1_regs_fifo2_feed_rate2_lowered_full >= $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_target_s}));
+assign card1_card_core1_regs_fifo2_feed_rate2_above_floor = (card1_card_core1_regs_fifo2_feed_rate2_lowered_full >= $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_start_s}));
 
 
 always @(card1_card_core1_regs_fifo2_feed_rate2_count_empty, card1_card_core1_regs_fifo2_feed_rate2_count) begin: card1_card_core1_regs_fifo2_feed_rate2_count_steps
