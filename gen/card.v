@@ -316,7 +316,7 @@ reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
 reg [31:0] card_core0_regs_fifo1_written_data;
-reg [31:0] card_core0_regs_fifo1_written_mask;
+reg [22:0] card_core0_regs_fifo1_written_mask;
 reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_home_busy;
@@ -2755,7 +2755,7 @@ assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word42_merged = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word42_merged = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | card_core0_regs_fifo1_written_data[2-1:0]);
 
 
 
@@ -2804,7 +2804,7 @@ assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word43_merged = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+assign card_core0_regs_fifo1_reg_word43_merged = card_core0_regs_fifo1_written_data[4-1:0];
 
 
 
@@ -2878,7 +2878,7 @@ assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word45_merged = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
+assign card_core0_regs_fifo1_reg_word45_merged = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | card_core0_regs_fifo1_written_data[10-1:0]);
 
 
 
@@ -2927,7 +2927,7 @@ assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word46_merged = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
+assign card_core0_regs_fifo1_reg_word46_merged = card_core0_regs_fifo1_written_data[10-1:0];
 
 
 
@@ -2976,7 +2976,7 @@ assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -2999,7 +2999,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word47_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3110,7 +3110,7 @@ assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word51_merged = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word51_merged = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3130,7 +3130,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word51_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word51_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word51_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word51_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3219,7 +3219,7 @@ assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word52_merged = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word52_merged = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3239,7 +3239,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word52_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word52_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word52_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word52_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3328,7 +3328,7 @@ assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word53_merged = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word53_merged = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3348,7 +3348,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word53_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word53_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word53_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word53_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3429,7 +3429,7 @@ assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word54_merged = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word54_merged = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -3449,7 +3449,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word54_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word54_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word54_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word54_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -3538,7 +3538,7 @@ assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word55_merged = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word55_merged = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -3558,7 +3558,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word55_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word55_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word55_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word55_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -3647,7 +3647,7 @@ assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word56_merged = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word56_merged = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -3667,7 +3667,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word56_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word56_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word56_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word56_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -3756,7 +3756,7 @@ assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word57_merged = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
+assign card_core0_regs_fifo1_reg_word57_merged = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | card_core0_regs_fifo1_written_data[6-1:0]);
 
 
 
@@ -3805,7 +3805,7 @@ assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word58_merged = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word58_merged = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3825,7 +3825,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word58_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word58_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word58_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word58_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3914,7 +3914,7 @@ assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word59_merged = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word59_merged = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3934,7 +3934,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word59_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word59_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word59_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word59_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4023,7 +4023,7 @@ assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word60_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word60_merged = card_core0_regs_fifo1_written_data[24-1:0];
 
 
 always @(card_core0_regs_fifo1_reg_word60_zero_above, card_core0_regs_fifo1_reg_word60_sign, card_core0_regs_fifo1_reg_word60_ones_above, card_core0_regs_fifo1_reg_word60_merged) begin: card_core0_regs_fifo1_reg_word60__limit25_clamp_signed
@@ -4043,9 +4043,9 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-assign card_core0_regs_fifo1_reg_word60_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
-assign card_core0_regs_fifo1_reg_word60_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
+assign card_core0_regs_fifo1_reg_word60_zero_above = (card_core0_regs_fifo1_written_data[32-1:24] == 0);
+assign card_core0_regs_fifo1_reg_word60_ones_above = (card_core0_regs_fifo1_written_data[32-1:24] == 255);
+assign card_core0_regs_fifo1_reg_word60_sign = card_core0_regs_fifo1_written_data[31];
 
 
 
@@ -4093,7 +4093,7 @@ assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word61_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word61_merged = card_core0_regs_fifo1_written_data[24-1:0];
 
 
 always @(card_core0_regs_fifo1_reg_word61_zero_above, card_core0_regs_fifo1_reg_word61_sign, card_core0_regs_fifo1_reg_word61_ones_above, card_core0_regs_fifo1_reg_word61_merged) begin: card_core0_regs_fifo1_reg_word61__limit26_clamp_signed
@@ -4113,9 +4113,9 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-assign card_core0_regs_fifo1_reg_word61_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
-assign card_core0_regs_fifo1_reg_word61_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
+assign card_core0_regs_fifo1_reg_word61_zero_above = (card_core0_regs_fifo1_written_data[32-1:24] == 0);
+assign card_core0_regs_fifo1_reg_word61_ones_above = (card_core0_regs_fifo1_written_data[32-1:24] == 255);
+assign card_core0_regs_fifo1_reg_word61_sign = card_core0_regs_fifo1_written_data[31];
 
 
 
@@ -4229,7 +4229,7 @@ assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word65_merged = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word65_merged = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | card_core0_regs_fifo1_written_data[2-1:0]);
 
 
 
@@ -4325,7 +4325,7 @@ assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word68_merged = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
+assign card_core0_regs_fifo1_reg_word68_merged = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | card_core0_regs_fifo1_written_data[7-1:0]);
 
 
 
@@ -4374,7 +4374,7 @@ assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word69_merged = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]));
+assign card_core0_regs_fifo1_reg_word69_merged = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | card_core0_regs_fifo1_written_data[4-1:0]);
 
 
 
@@ -4401,7 +4401,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_zero_above = ((card_core0_regs_fifo1_written_data[32-1:4] & card_core0_regs_fifo1_written_mask[32-1:4]) == 0);
+assign card_core0_regs_fifo1_reg_word69_zero_above = (card_core0_regs_fifo1_written_data[32-1:4] == 0);
 
 
 
@@ -4446,7 +4446,7 @@ assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word70_merged = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word70_merged = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4473,7 +4473,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word70_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4518,7 +4518,7 @@ assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word71_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word71_merged = card_core0_regs_fifo1_written_data[24-1:0];
 
 
 
@@ -4541,7 +4541,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word71_zero_above = (card_core0_regs_fifo1_written_data[32-1:24] == 0);
 
 
 
@@ -4589,7 +4589,7 @@ assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word72_merged = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
+assign card_core0_regs_fifo1_reg_word72_merged = card_core0_regs_fifo1_written_data[7-1:0];
 
 
 
@@ -4663,7 +4663,7 @@ assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word74_merged = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word74_merged = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4690,7 +4690,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word74_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word74_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4735,7 +4735,7 @@ assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word75_merged = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word75_merged = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4762,7 +4762,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word75_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word75_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4807,7 +4807,7 @@ assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4830,7 +4830,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word76_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word76_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4875,7 +4875,7 @@ assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word77_merged = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | (card_core0_regs_fifo1_written_data[23-1:0] & card_core0_regs_fifo1_written_mask[23-1:0]));
+assign card_core0_regs_fifo1_reg_word77_merged = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | card_core0_regs_fifo1_written_data[23-1:0]);
 
 
 
@@ -4902,7 +4902,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_zero_above = ((card_core0_regs_fifo1_written_data[32-1:23] & card_core0_regs_fifo1_written_mask[32-1:23]) == 0);
+assign card_core0_regs_fifo1_reg_word77_zero_above = (card_core0_regs_fifo1_written_data[32-1:23] == 0);
 
 
 
@@ -4947,7 +4947,7 @@ assign card_core0_regs_fifo1_reg_word78_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word78_merged = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word78_merged = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -4967,7 +4967,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word78_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word78_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word78_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word78_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -5056,7 +5056,7 @@ assign card_core0_regs_fifo1_reg_word79_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word79_merged = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word79_merged = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | card_core0_regs_fifo1_written_data[2-1:0]);
 
 
 
@@ -5083,7 +5083,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word79_zero_above = ((card_core0_regs_fifo1_written_data[32-1:2] & card_core0_regs_fifo1_written_mask[32-1:2]) == 0);
+assign card_core0_regs_fifo1_reg_word79_zero_above = (card_core0_regs_fifo1_written_data[32-1:2] == 0);
 
 
 
@@ -6066,7 +6066,7 @@ assign card_core0_regs_fifo1_feed_rate1_count_last = (card_core0_regs_fifo1_feed
 
 assign card_core0_regs_fifo1_feed_rate1_raised = card_core0_regs_fifo1_feed_rate1_raised_full[16-1:0];
 assign card_core0_regs_fifo1_feed_rate1_lowered = card_core0_regs_fifo1_feed_rate1_lowered_full[16-1:0];
-assign card_core0_regs_fifo1_feed_rate1_can_raise = (card_core0_regs_fifo1_feed_rate1_raised_full <= card_core0_regs_fifo1_feed_rate1_target_s);
+assign card_core0_regs_fifo1_feed_rate1_can_raise = (card_core0_regs_fifo1_feed_rate1_raised_full <= {1'b0, card_core0_regs_fifo1_feed_rate1_target_s});
 assign card_core0_regs_fifo1_feed_rate1_can_lower = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_target_s}));
 assign card_core0_regs_fifo1_feed_rate1_above_floor = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_start_s}));
 
@@ -7335,8 +7335,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
     else begin
         card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
         card_core0_regs_fifo1_written_addr <= pci_slave1_pci_requests1_local_addr;
-        card_core0_regs_fifo1_written_data <= pci_slave1_pci_requests1_local_wdata;
-        card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
+        card_core0_regs_fifo1_written_data <= (pci_slave1_pci_requests1_local_wdata & card_core0_regs_fifo1_byte_mask);
+        card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask[23-1:0];
     end
 end
 
@@ -7376,7 +7376,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || card_core0_regs_fifo1_releasing || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]));
+assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || card_core0_regs_fifo1_releasing || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1]));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_before

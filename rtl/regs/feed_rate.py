@@ -126,7 +126,7 @@ def feed_rate(clock, reset, settings, feed):
         # rate + step <= target; rate - step >= target; rate - step >= ramp_start
         raised.next = raised_full[RATE_BITS:]
         lowered.next = lowered_full[RATE_BITS:]
-        can_raise.next = raised_full <= target_s
+        can_raise.next = raised_full <= concat(False, target_s)
         can_lower.next = lowered_full >= concat(False, target_s).signed()
         above_floor.next = lowered_full >= concat(False, start_s).signed()
 
