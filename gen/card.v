@@ -970,10 +970,10 @@ wire card_core0_regs_fifo1_feed_rate1_below;
 wire card_core0_regs_fifo1_feed_rate1_can_lower;
 wire card_core0_regs_fifo1_feed_rate1_can_raise;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_count;
-reg [15:0] card_core0_regs_fifo1_feed_rate1_count_down;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_count_addend;
 wire card_core0_regs_fifo1_feed_rate1_count_empty;
 wire card_core0_regs_fifo1_feed_rate1_count_last;
-reg [15:0] card_core0_regs_fifo1_feed_rate1_count_up;
+wire [15:0] card_core0_regs_fifo1_feed_rate1_count_moved;
 reg card_core0_regs_fifo1_feed_rate1_decelerate;
 wire [15:0] card_core0_regs_fifo1_feed_rate1_lowered;
 wire signed [16:0] card_core0_regs_fifo1_feed_rate1_lowered_full;
@@ -6071,15 +6071,16 @@ assign card_core0_regs_fifo1_feed_rate1_can_lower = (card_core0_regs_fifo1_feed_
 assign card_core0_regs_fifo1_feed_rate1_above_floor = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_start_s}));
 
 
-always @(card_core0_regs_fifo1_feed_rate1_count_empty, card_core0_regs_fifo1_feed_rate1_count) begin: card_core0_regs_fifo1_feed_rate1_count_steps
-    card_core0_regs_fifo1_feed_rate1_count_up = (card_core0_regs_fifo1_feed_rate1_count + 1);
-    if (card_core0_regs_fifo1_feed_rate1_count_empty) begin
-        card_core0_regs_fifo1_feed_rate1_count_down = card_core0_regs_fifo1_feed_rate1_count;
-    end
-    else begin
-        card_core0_regs_fifo1_feed_rate1_count_down = (card_core0_regs_fifo1_feed_rate1_count - 1);
+always @(card_core0_regs_fifo1_feed_rate1_below, card_core0_regs_fifo1_feed_pause, card_core0_regs_fifo1_feed_rate1_decelerate) begin: card_core0_regs_fifo1_feed_rate1_count_direction
+    card_core0_regs_fifo1_feed_rate1_count_addend = ((1 << 16) - 1);
+    if ((card_core0_regs_fifo1_feed_rate1_below && (!(card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)))) begin
+        card_core0_regs_fifo1_feed_rate1_count_addend = 1;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_feed_rate1_count_moved = (card_core0_regs_fifo1_feed_rate1_count + card_core0_regs_fifo1_feed_rate1_count_addend);
 
 
 
@@ -6120,14 +6121,14 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
             end
             else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
                 if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
-                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_moved;
                 end
             end
             else if (card_core0_regs_fifo1_feed_rate1_below) begin
-                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_moved;
             end
-            else if (card_core0_regs_fifo1_feed_rate1_above) begin
-                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+            else if ((card_core0_regs_fifo1_feed_rate1_above && (!card_core0_regs_fifo1_feed_rate1_count_empty))) begin
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_moved;
             end
         end
     end

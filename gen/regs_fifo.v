@@ -865,10 +865,10 @@ wire feed_rate0_below;
 wire feed_rate0_can_lower;
 wire feed_rate0_can_raise;
 reg [15:0] feed_rate0_count;
-reg [15:0] feed_rate0_count_down;
+reg [15:0] feed_rate0_count_addend;
 wire feed_rate0_count_empty;
 wire feed_rate0_count_last;
-reg [15:0] feed_rate0_count_up;
+wire [15:0] feed_rate0_count_moved;
 reg feed_rate0_decelerate;
 wire [15:0] feed_rate0_lowered;
 wire signed [16:0] feed_rate0_lowered_full;
@@ -4574,15 +4574,16 @@ assign feed_rate0_can_lower = (feed_rate0_lowered_full >= $signed({1'b0, feed_ra
 assign feed_rate0_above_floor = (feed_rate0_lowered_full >= $signed({1'b0, feed_rate0_start_s}));
 
 
-always @(feed_rate0_count_empty, feed_rate0_count) begin: feed_rate0_count_steps
-    feed_rate0_count_up = (feed_rate0_count + 1);
-    if (feed_rate0_count_empty) begin
-        feed_rate0_count_down = feed_rate0_count;
-    end
-    else begin
-        feed_rate0_count_down = (feed_rate0_count - 1);
+always @(feed_rate0_below, feed_pause, feed_rate0_decelerate) begin: feed_rate0_count_direction
+    feed_rate0_count_addend = ((1 << 16) - 1);
+    if ((feed_rate0_below && (!(feed_rate0_decelerate || feed_pause)))) begin
+        feed_rate0_count_addend = 1;
     end
 end
+
+
+
+assign feed_rate0_count_moved = (feed_rate0_count + feed_rate0_count_addend);
 
 
 
@@ -4623,14 +4624,14 @@ always @(posedge clock, negedge reset) begin: feed_rate0_ramp_count
             end
             else if ((feed_rate0_decelerate || feed_pause)) begin
                 if ((!feed_rate0_count_empty)) begin
-                    feed_rate0_count <= feed_rate0_count_down;
+                    feed_rate0_count <= feed_rate0_count_moved;
                 end
             end
             else if (feed_rate0_below) begin
-                feed_rate0_count <= feed_rate0_count_up;
+                feed_rate0_count <= feed_rate0_count_moved;
             end
-            else if (feed_rate0_above) begin
-                feed_rate0_count <= feed_rate0_count_down;
+            else if ((feed_rate0_above && (!feed_rate0_count_empty))) begin
+                feed_rate0_count <= feed_rate0_count_moved;
             end
         end
     end

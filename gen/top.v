@@ -993,10 +993,10 @@ wire card1_card_core1_regs_fifo2_feed_rate2_below;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_lower;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_raise;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count;
-reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_down;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_addend;
 wire card1_card_core1_regs_fifo2_feed_rate2_count_empty;
 wire card1_card_core1_regs_fifo2_feed_rate2_count_last;
-reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_up;
+wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_moved;
 reg card1_card_core1_regs_fifo2_feed_rate2_decelerate;
 wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_lowered;
 wire signed [16:0] card1_card_core1_regs_fifo2_feed_rate2_lowered_full;
@@ -6902,15 +6902,16 @@ assign card1_card_core1_regs_fifo2_feed_rate2_can_lower = (card1_card_core1_regs
 assign card1_card_core1_regs_fifo2_feed_rate2_above_floor = (card1_card_core1_regs_fifo2_feed_rate2_lowered_full >= $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_start_s}));
 
 
-always @(card1_card_core1_regs_fifo2_feed_rate2_count_empty, card1_card_core1_regs_fifo2_feed_rate2_count) begin: card1_card_core1_regs_fifo2_feed_rate2_count_steps
-    card1_card_core1_regs_fifo2_feed_rate2_count_up = (card1_card_core1_regs_fifo2_feed_rate2_count + 1);
-    if (card1_card_core1_regs_fifo2_feed_rate2_count_empty) begin
-        card1_card_core1_regs_fifo2_feed_rate2_count_down = card1_card_core1_regs_fifo2_feed_rate2_count;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_feed_rate2_count_down = (card1_card_core1_regs_fifo2_feed_rate2_count - 1);
+always @(card1_card_core1_regs_fifo2_feed_rate2_below, card1_card_core1_regs_fifo2_feed_pause, card1_card_core1_regs_fifo2_feed_rate2_decelerate) begin: card1_card_core1_regs_fifo2_feed_rate2_count_direction
+    card1_card_core1_regs_fifo2_feed_rate2_count_addend = ((1 << 16) - 1);
+    if ((card1_card_core1_regs_fifo2_feed_rate2_below && (!(card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)))) begin
+        card1_card_core1_regs_fifo2_feed_rate2_count_addend = 1;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_feed_rate2_count_moved = (card1_card_core1_regs_fifo2_feed_rate2_count + card1_card_core1_regs_fifo2_feed_rate2_count_addend);
 
 
 
@@ -6951,14 +6952,14 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
             end
             else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
                 if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_moved;
                 end
             end
             else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
-                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_moved;
             end
-            else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
-                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+            else if ((card1_card_core1_regs_fifo2_feed_rate2_above && (!card1_card_core1_regs_fifo2_feed_rate2_count_empty))) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_moved;
             end
         end
     end

@@ -61,8 +61,9 @@ def feed_rate(clock, reset, settings, feed):
     flip-flops.  A settings change reaches the ramp one clock later.
 
     Processes, by what they drive: ``register_settings`` (the settings),
-    ``end_ahead`` (``decelerate``), ``candidates``, ``limits`` and
-    ``count_steps`` (the next rates, counts and their conditions), ``gate``
+    ``end_ahead`` (``decelerate``), ``candidates``, ``limits``,
+    ``count_direction`` and ``count_steps`` (the next rates, counts and
+    their conditions), ``gate``
     (``advancing``), ``accumulate`` (the phase, ``tick``), ``ramp_count``
     (the ramp count), ``ramp_rate`` (the rate, ``held``).
 
@@ -82,7 +83,8 @@ def feed_rate(clock, reset, settings, feed):
     phase = Signal(intbv(0)[PHASE_BITS:])
     total = Signal(intbv(0)[PHASE_BITS + 1:])
     count = Signal(intbv(DECEL_MARGIN, min=0, max=1 << COUNT_BITS))  # ramp ticks + DECEL_MARGIN
-    count_up, count_down = (Signal(intbv(0, min=0, max=1 << COUNT_BITS)) for _ in range(2))
+    # the count one up (rule 3) or one down (rules 2 and 4), from one adder
+    count_addend, count_moved = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
     count_empty, count_last = Signal(bool(1)), Signal(bool(0))
     decelerate = Signal(bool(0))
     advancing = Signal(bool(0))  # the phase moves on in this clock: running, not held, outputs not full
@@ -131,12 +133,15 @@ def feed_rate(clock, reset, settings, feed):
         above_floor.next = lowered_full >= concat(False, start_s).signed()
 
     @always_comb
+    def count_direction():
+        # up only where rule 3 raises the rate; where the count goes down, ramp_count keeps a count of 0
+        count_addend.next = (1 << COUNT_BITS) - 1
+        if below and not (decelerate or feed.pause):
+            count_addend.next = 1
+
+    @always_comb
     def count_steps():
-        count_up.next = count + 1
-        if count_empty:
-            count_down.next = count
-        else:
-            count_down.next = count - 1
+        count_moved.next = count + count_addend
 
     @always_comb
     def gate():
@@ -163,11 +168,11 @@ def feed_rate(clock, reset, settings, feed):
                 count.next = DECEL_MARGIN
             elif decelerate or feed.pause:
                 if not count_empty:
-                    count.next = count_down
+                    count.next = count_moved
             elif below:
-                count.next = count_up
-            elif above:
-                count.next = count_down
+                count.next = count_moved
+            elif above and not count_empty:
+                count.next = count_moved
 
     @always_seq(clock.posedge, reset=reset)
     def ramp_rate():
@@ -213,7 +218,7 @@ def feed_rate(clock, reset, settings, feed):
                 else:
                     rate.next = target_s
 
-    return register_settings, end_ahead, candidates, limits, count_steps, gate, accumulate, ramp_count, ramp_rate
+    return register_settings, end_ahead, candidates, limits, count_direction, count_steps, gate, accumulate, ramp_count, ramp_rate
 
 
 def feed_rate_ports(coord_width=COORD_WIDTH.default):
