@@ -6001,7 +6001,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sequencer1_d
         if (((card_core0_regs_fifo1_sequencer1_state != 3'b011) || card_core0_regs_fifo1_sequencer1_state_over)) begin
             card_core0_regs_fifo1_sequencer1_dwell_left <= card_core0_regs_fifo1_sequencer1_operand_0;
         end
-        else if ((!card_core0_regs_fifo1_outputs_busy)) begin
+        else if (((!card_core0_regs_fifo1_outputs_busy) && (card_core0_regs_fifo1_sequencer1_dwell_left != 0))) begin
             card_core0_regs_fifo1_sequencer1_dwell_left <= (card_core0_regs_fifo1_sequencer1_dwell_left - 1);
         end
     end

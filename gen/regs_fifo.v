@@ -4504,7 +4504,7 @@ always @(posedge clock, negedge reset) begin: sequencer0_dwell_count
         if (((sequencer0_state != 3'b011) || sequencer0_state_over)) begin
             sequencer0_dwell_left <= sequencer0_operand_0;
         end
-        else if ((!outputs_busy)) begin
+        else if (((!outputs_busy) && (sequencer0_dwell_left != 0))) begin
             sequencer0_dwell_left <= (sequencer0_dwell_left - 1);
         end
     end

@@ -6832,7 +6832,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sequen
         if (((card1_card_core1_regs_fifo2_sequencer2_state != 3'b011) || card1_card_core1_regs_fifo2_sequencer2_state_over)) begin
             card1_card_core1_regs_fifo2_sequencer2_dwell_left <= card1_card_core1_regs_fifo2_sequencer2_operand_0;
         end
-        else if ((!card1_card_core1_regs_fifo2_outputs_busy)) begin
+        else if (((!card1_card_core1_regs_fifo2_outputs_busy) && (card1_card_core1_regs_fifo2_sequencer2_dwell_left != 0))) begin
             card1_card_core1_regs_fifo2_sequencer2_dwell_left <= (card1_card_core1_regs_fifo2_sequencer2_dwell_left - 1);
         end
     end

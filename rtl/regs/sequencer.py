@@ -318,12 +318,10 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
         # The count only matters in DWELL, so it takes the operand whenever
         # a DWELL can begin at this edge (outside DWELL or at its end; the
         # operand is the next instruction's) and counts down inside it: the
-        # issue and the clear (STOP) stay out of its 32-bit enable.  Inside
-        # DWELL and not over with the outputs idle, the count is 2 or more
-        # (``completion``): no zero test guards the decrement.
+        # issue and the clear (STOP) stay out of its 32-bit enable.
         if state != seq_t.S_DWELL or state_over:
             dwell_left.next = operand_0
-        elif not pulses.outputs_busy:
+        elif not pulses.outputs_busy and dwell_left != 0:
             dwell_left.next = dwell_left - 1
 
     @always_comb
