@@ -347,8 +347,6 @@ wire card_core0_regs_fifo1_requests_dir_y;
 reg card_core0_regs_fifo1_steps_dir_y;
 reg card_core0_regs_fifo1_direct_dir_y;
 reg [9:0] card_core0_regs_fifo1_sync_fifo1_count;
-reg [9:0] card_core0_regs_fifo1_sync_fifo1_count_addend;
-wire [9:0] card_core0_regs_fifo1_sync_fifo1_count_moved;
 wire card_core0_regs_fifo1_sync_fifo1_do_read;
 wire card_core0_regs_fifo1_sync_fifo1_do_write;
 reg [2:0] card_core0_regs_fifo1_sync_fifo1_free;
@@ -2636,18 +2634,6 @@ assign card_core0_regs_fifo1_sync_fifo1_do_write = (card_core0_regs_fifo1_push &
 assign card_core0_regs_fifo1_sync_fifo1_do_read = (card_core0_regs_fifo1_fifo_pop && (!card_core0_regs_fifo1_sync_fifo1_is_empty));
 
 
-always @(card_core0_regs_fifo1_sync_fifo1_do_write) begin: card_core0_regs_fifo1_sync_fifo1_count_direction
-    card_core0_regs_fifo1_sync_fifo1_count_addend = ((1 << 10) - 1);
-    if (card_core0_regs_fifo1_sync_fifo1_do_write) begin
-        card_core0_regs_fifo1_sync_fifo1_count_addend = 1;
-    end
-end
-
-
-
-assign card_core0_regs_fifo1_sync_fifo1_count_moved = (card_core0_regs_fifo1_sync_fifo1_count + card_core0_regs_fifo1_sync_fifo1_count_addend);
-
-
 
 assign card_core0_regs_fifo1_sync_fifo1_one_word = (card_core0_regs_fifo1_sync_fifo1_count == 1);
 assign card_core0_regs_fifo1_sync_fifo1_last_beyond = ($signed({1'b0, card_core0_regs_fifo1_sync_fifo1_count}) == ((512 - 3) - 1));
@@ -2690,8 +2676,11 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_sync_fifo1_p
             if (card_core0_regs_fifo1_sync_fifo1_do_read) begin
                 card_core0_regs_fifo1_sync_fifo1_read_addr <= (card_core0_regs_fifo1_sync_fifo1_read_addr + 1);
             end
-            if ((card_core0_regs_fifo1_sync_fifo1_do_write != card_core0_regs_fifo1_sync_fifo1_do_read)) begin
-                following = card_core0_regs_fifo1_sync_fifo1_count_moved;
+            if ((card_core0_regs_fifo1_sync_fifo1_do_write && (!card_core0_regs_fifo1_sync_fifo1_do_read))) begin
+                following = (card_core0_regs_fifo1_sync_fifo1_count + 1);
+            end
+            else if ((card_core0_regs_fifo1_sync_fifo1_do_read && (!card_core0_regs_fifo1_sync_fifo1_do_write))) begin
+                following = (card_core0_regs_fifo1_sync_fifo1_count - 1);
             end
         end
         card_core0_regs_fifo1_sync_fifo1_count <= following;

@@ -256,8 +256,6 @@ reg direct_dir_x;
 wire requests_dir_y;
 reg direct_dir_y;
 reg [9:0] sync_fifo0_count;
-reg [9:0] sync_fifo0_count_addend;
-wire [9:0] sync_fifo0_count_moved;
 wire sync_fifo0_do_read;
 wire sync_fifo0_do_write;
 reg [2:0] sync_fifo0_free;
@@ -1139,18 +1137,6 @@ assign sync_fifo0_do_write = (push && sync_fifo0_free[0]);
 assign sync_fifo0_do_read = (fifo_pop && (!sync_fifo0_is_empty));
 
 
-always @(sync_fifo0_do_write) begin: sync_fifo0_count_direction
-    sync_fifo0_count_addend = ((1 << 10) - 1);
-    if (sync_fifo0_do_write) begin
-        sync_fifo0_count_addend = 1;
-    end
-end
-
-
-
-assign sync_fifo0_count_moved = (sync_fifo0_count + sync_fifo0_count_addend);
-
-
 
 assign sync_fifo0_one_word = (sync_fifo0_count == 1);
 assign sync_fifo0_last_beyond = ($signed({1'b0, sync_fifo0_count}) == ((512 - 3) - 1));
@@ -1193,8 +1179,11 @@ always @(posedge clock, negedge reset) begin: sync_fifo0_pointers
             if (sync_fifo0_do_read) begin
                 sync_fifo0_read_addr <= (sync_fifo0_read_addr + 1);
             end
-            if ((sync_fifo0_do_write != sync_fifo0_do_read)) begin
-                following = sync_fifo0_count_moved;
+            if ((sync_fifo0_do_write && (!sync_fifo0_do_read))) begin
+                following = (sync_fifo0_count + 1);
+            end
+            else if ((sync_fifo0_do_read && (!sync_fifo0_do_write))) begin
+                following = (sync_fifo0_count - 1);
             end
         end
         sync_fifo0_count <= following;

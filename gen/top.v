@@ -370,8 +370,6 @@ wire card1_card_core1_regs_fifo2_requests_dir_y;
 reg card1_card_core1_regs_fifo2_steps_dir_y;
 reg card1_card_core1_regs_fifo2_direct_dir_y;
 reg [9:0] card1_card_core1_regs_fifo2_sync_fifo2_count;
-reg [9:0] card1_card_core1_regs_fifo2_sync_fifo2_count_addend;
-wire [9:0] card1_card_core1_regs_fifo2_sync_fifo2_count_moved;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_read;
 wire card1_card_core1_regs_fifo2_sync_fifo2_do_write;
 reg [2:0] card1_card_core1_regs_fifo2_sync_fifo2_free;
@@ -3467,18 +3465,6 @@ assign card1_card_core1_regs_fifo2_sync_fifo2_do_write = (card1_card_core1_regs_
 assign card1_card_core1_regs_fifo2_sync_fifo2_do_read = (card1_card_core1_regs_fifo2_fifo_pop && (!card1_card_core1_regs_fifo2_sync_fifo2_is_empty));
 
 
-always @(card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin: card1_card_core1_regs_fifo2_sync_fifo2_count_direction
-    card1_card_core1_regs_fifo2_sync_fifo2_count_addend = ((1 << 10) - 1);
-    if (card1_card_core1_regs_fifo2_sync_fifo2_do_write) begin
-        card1_card_core1_regs_fifo2_sync_fifo2_count_addend = 1;
-    end
-end
-
-
-
-assign card1_card_core1_regs_fifo2_sync_fifo2_count_moved = (card1_card_core1_regs_fifo2_sync_fifo2_count + card1_card_core1_regs_fifo2_sync_fifo2_count_addend);
-
-
 
 assign card1_card_core1_regs_fifo2_sync_fifo2_one_word = (card1_card_core1_regs_fifo2_sync_fifo2_count == 1);
 assign card1_card_core1_regs_fifo2_sync_fifo2_last_beyond = ($signed({1'b0, card1_card_core1_regs_fifo2_sync_fifo2_count}) == ((512 - 3) - 1));
@@ -3521,8 +3507,11 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_sync_f
             if (card1_card_core1_regs_fifo2_sync_fifo2_do_read) begin
                 card1_card_core1_regs_fifo2_sync_fifo2_read_addr <= (card1_card_core1_regs_fifo2_sync_fifo2_read_addr + 1);
             end
-            if ((card1_card_core1_regs_fifo2_sync_fifo2_do_write != card1_card_core1_regs_fifo2_sync_fifo2_do_read)) begin
-                following = card1_card_core1_regs_fifo2_sync_fifo2_count_moved;
+            if ((card1_card_core1_regs_fifo2_sync_fifo2_do_write && (!card1_card_core1_regs_fifo2_sync_fifo2_do_read))) begin
+                following = (card1_card_core1_regs_fifo2_sync_fifo2_count + 1);
+            end
+            else if ((card1_card_core1_regs_fifo2_sync_fifo2_do_read && (!card1_card_core1_regs_fifo2_sync_fifo2_do_write))) begin
+                following = (card1_card_core1_regs_fifo2_sync_fifo2_count - 1);
             end
         end
         card1_card_core1_regs_fifo2_sync_fifo2_count <= following;

@@ -54,24 +54,11 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
     last_beyond = Signal(bool(0))   # exactly levels + 1 places free
     do_write = Signal(bool(0))
     do_read = Signal(bool(0))
-    # the count one up (a write alone) or one down (a read alone), from one adder
-    count_bits = len(count)
-    count_addend, count_moved = Signal(modbv(0)[count_bits:]), Signal(modbv(0)[count_bits:])
 
     @always_comb
     def enables():
         do_write.next = push and free[0]
         do_read.next = pop and not is_empty
-
-    @always_comb
-    def count_direction():
-        count_addend.next = (1 << count_bits) - 1
-        if do_write:
-            count_addend.next = 1
-
-    @always_comb
-    def count_step():
-        count_moved.next = count + count_addend
 
     @always_comb
     def near_ends():
@@ -98,8 +85,10 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
                 write_addr.next = write_addr + 1
             if do_read:
                 read_addr.next = read_addr + 1
-            if do_write != do_read:
-                following[:] = count_moved
+            if do_write and not do_read:
+                following[:] = count + 1
+            elif do_read and not do_write:
+                following[:] = count - 1
         count.next = following
         only_read = do_read and not do_write
         only_write = do_write and not do_read
@@ -121,7 +110,7 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
         full.next = not free[0]
         room.next = free[levels - 1]
 
-    return enables, count_direction, count_step, near_ends, memory, pointers, flags
+    return enables, near_ends, memory, pointers, flags
 
 
 def sync_fifo_ports(depth, width=32):
