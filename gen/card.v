@@ -1121,6 +1121,7 @@ reg card_core0_regs_fifo1_homing1_valid;
 wire [1:0] card_core0_regs_fifo1_homing1_port_home;
 reg signed [23:0] card_core0_regs_fifo1_homing1_port_count;
 reg [15:0] card_core0_regs_fifo1_homing1_port_period;
+reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
 reg card_core0_regs_fifo1_homing1_port_load;
 reg card_core0_regs_fifo1_status_words1_busy_before;
@@ -7134,6 +7135,7 @@ always @(card_core0_regs_fifo1_homing1_releasing, card_core0_regs_fifo1_homing1_
     card_core0_regs_fifo1_homing1_gave_up = (drained && (((card_core0_regs_fifo1_homing1_state == 3'b010) && (!card_core0_regs_fifo1_homing1_switch)) || ((card_core0_regs_fifo1_homing1_state == 3'b100) && card_core0_regs_fifo1_homing1_switch)));
     card_core0_regs_fifo1_homing1_finished = ((card_core0_regs_fifo1_homing1_state == 3'b110) && (!card_core0_regs_fifo1_out_active));
     card_core0_regs_fifo1_home_cut = ((card_core0_regs_fifo1_homing1_state == 3'b010) && card_core0_regs_fifo1_homing1_switch);
+    card_core0_regs_fifo1_homing1_port_retarget = released;
     zero = 2'h0;
     if ((released && (card_core0_regs_fifo1_homing1_axis < 2))) begin
         zero[card_core0_regs_fifo1_homing1_slot] = 1;
@@ -7409,9 +7411,9 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_home_zero, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
-    card_core0_regs_fifo1_direct_pulse2_command_retarget = card_core0_regs_fifo1_home_zero[0];
+    card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
@@ -7428,9 +7430,9 @@ always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_loa
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_home_zero, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
-    card_core0_regs_fifo1_direct_pulse3_command_retarget = card_core0_regs_fifo1_home_zero[1];
+    card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;

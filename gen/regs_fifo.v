@@ -1015,6 +1015,7 @@ reg homing0_valid;
 wire [1:0] homing0_port_home;
 reg signed [23:0] homing0_port_count;
 reg [15:0] homing0_port_period;
+reg homing0_port_retarget;
 reg homing0_port_ended;
 reg homing0_port_load;
 reg status_words0_busy_before;
@@ -5637,6 +5638,7 @@ always @(homing0_releasing, homing0_slot, out_active, pulse_busy, homing0_axis, 
     homing0_gave_up = (drained && (((homing0_state == 3'b010) && (!homing0_switch)) || ((homing0_state == 3'b100) && homing0_switch)));
     homing0_finished = ((homing0_state == 3'b110) && (!out_active));
     home_cut = ((homing0_state == 3'b010) && homing0_switch);
+    homing0_port_retarget = released;
     zero = 2'h0;
     if ((released && (homing0_axis < 2))) begin
         zero[homing0_slot] = 1;
@@ -5912,9 +5914,9 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, sequencer0_two_axis_operands0_pulses_count_x, reg_word31_shown[7-1:4], reg_word19__store14_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, home_zero, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
-    direct_pulse0_command_retarget = home_zero[0];
+    direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
         direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 0));
         direct_pulse0_command_count = homing0_port_count;
@@ -5931,9 +5933,9 @@ always @(homing0_port_count, seq_load, sequencer0_two_axis_operands0_pulses_coun
 end
 
 
-always @(homing0_port_count, seq_load, sequencer0_two_axis_operands0_pulses_count_y, reg_word31_shown[7-1:4], reg_word20__store15_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, home_zero, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
-    direct_pulse1_command_retarget = home_zero[1];
+    direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
         direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 1));
         direct_pulse1_command_count = homing0_port_count;

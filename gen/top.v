@@ -1144,6 +1144,7 @@ reg card1_card_core1_regs_fifo2_homing2_valid;
 wire [1:0] card1_card_core1_regs_fifo2_homing2_port_home;
 reg signed [23:0] card1_card_core1_regs_fifo2_homing2_port_count;
 reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
+reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
@@ -7965,6 +7966,7 @@ always @(card1_card_core1_regs_fifo2_homing2_releasing, card1_card_core1_regs_fi
     card1_card_core1_regs_fifo2_homing2_gave_up = (drained && (((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && (!card1_card_core1_regs_fifo2_homing2_switch)) || ((card1_card_core1_regs_fifo2_homing2_state == 3'b100) && card1_card_core1_regs_fifo2_homing2_switch)));
     card1_card_core1_regs_fifo2_homing2_finished = ((card1_card_core1_regs_fifo2_homing2_state == 3'b110) && (!card1_card_core1_regs_fifo2_out_active));
     card1_card_core1_regs_fifo2_home_cut = ((card1_card_core1_regs_fifo2_homing2_state == 3'b010) && card1_card_core1_regs_fifo2_homing2_switch);
+    card1_card_core1_regs_fifo2_homing2_port_retarget = released;
     zero = 2'h0;
     if ((released && (card1_card_core1_regs_fifo2_homing2_axis < 2))) begin
         zero[card1_card_core1_regs_fifo2_homing2_slot] = 1;
@@ -8240,9 +8242,9 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_home_zero, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
-    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = card1_card_core1_regs_fifo2_home_zero[0];
+    card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
@@ -8259,9 +8261,9 @@ always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_f
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_home_zero, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
-    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = card1_card_core1_regs_fifo2_home_zero[1];
+    card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;

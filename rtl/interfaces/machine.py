@@ -76,10 +76,9 @@ class Homing:
     ``pulse_busy`` (a direct-pulse generator is busy) and ``outputs_active``
     (a step is queued in the pulse outputs or on the pins).  The sequencer
     drives ``busy``, the homed axis's direct-pulse command (``load`` one
-    clock with ``count``, signed, at ``period``; ``cut`` clears it),
-    ``zero`` (one clock at the release, bit i axis i: the homed axis's
-    position is zeroed and its direct pulses retargeted, |``count``| its
-    steps still to go, timing kept),
+    clock with ``count``, signed, at ``period``; ``cut`` clears it;
+    ``retarget`` makes |``count``| its steps still to go, timing kept),
+    ``zero`` (one clock: zero the homed axis's position; bit i axis i),
     ``ended`` (one clock as a HOME ends: done, not found or refused),
     ``taken`` (what HOME reads: AXIS, NEGATIVE and AXIS_INDEX of the last HOME) and
     ``state`` (what HOME_STATUS reads)."""
@@ -95,5 +94,6 @@ class Homing:
                home=Signal(intbv(0)[axes:]), idle=Signal(bool(0)), clear=Signal(bool(0)),
                pulse_busy=Signal(bool(0)), outputs_active=Signal(bool(0)), busy=Signal(bool(0)),
                load=Signal(bool(0)), count=Signal(intbv(0, min=-(1 << (count - 1)), max=1 << (count - 1))),
-               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), zero=Signal(intbv(0)[axes:]), ended=Signal(bool(0)), taken=Signal(intbv(0)[home.width:]),
+               period=Signal(intbv(1)[seek.width:]), cut=Signal(bool(0)), retarget=Signal(bool(0)),
+               zero=Signal(intbv(0)[axes:]), ended=Signal(bool(0)), taken=Signal(intbv(0)[home.width:]),
                state=Signal(intbv(0)[status.width:]))

@@ -21,10 +21,10 @@ def homing(clock, reset, port):
     1. SEEK: ``load`` HOME_SEARCH steps towards the switch at
        ``seek_period``; when the filtered switch is active, ``cut`` them.
     2. RELEASE: ``load`` HOME_SEARCH steps the other way at
-       ``release_period``; when the switch is inactive again, the axis's
-       bit of ``zero`` retargets the generator to HOME_BACKOFF steps and
-       zeroes the axis's position in the same clock: the position counts
-       the steps whose STEP rises from the next edge on.
+       ``release_period``; when the switch is inactive again, ``retarget``
+       the generator to HOME_BACKOFF steps and ``zero`` the axis's position
+       in the same clock: the position counts the steps whose STEP rises
+       from the next edge on.
     3. BACKOFF: the generator goes on with those steps at the period's count
        under way, so the first back-off step comes ``release_period`` after
        the last release step (none when 0); then wait until the pulse
@@ -39,19 +39,19 @@ def homing(clock, reset, port):
     (AXIS, NEGATIVE), ``state`` what HOME_STATUS reads: BUSY (also in the
     clock of ``start``: a read right after the HOME write never sees the
     HOME before it), DONE, NOT_FOUND, REFUSED, PHASE.  ``busy``, ``load``
-    and ``count`` leave flip-flops, ``zero`` a LUT or two after them (the
-    filtered switch, the homed axis decoded once), so that the direct
-    pulses' selection and the generator's 24-bit count start from
-    registers.
+    and ``count`` leave flip-flops, ``retarget`` one LUT after them (the
+    filtered switch), so that the direct pulses' selection and the
+    generator's 24-bit count start from registers.
 
     Switch trips in SEEK, releases in RELEASE (``count``: the next load's
-    or the release's retarget's, registered):
+    or retarget's, registered):
         clock     _/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_/~\\_
         home      _/~~~~~~~~~~~~~~~~~~~~~\\_________
         state     =SEEK==X=TURN=X=RELEASE===X=BACKOFF===
         cut       _/~~~\\___________________________
         load      _____/~~~\\_______________________
         count     =search====X=backoff=============
+        retarget  _____________________/~~~\\_______
         zero      _____________________/~~~\\_______
     """
     state_t = enum("IDLE", "SEEK_LOAD", "SEEK", "TURN", "RELEASE", "BACKOFF", "SETTLE")
@@ -150,6 +150,7 @@ def homing(clock, reset, port):
         gave_up.next = drained and ((state == state_t.SEEK and not switch) or (state == state_t.RELEASE and switch))
         finished.next = state == state_t.SETTLE and not port.outputs_active
         port.cut.next = state == state_t.SEEK and switch
+        port.retarget.next = released
         zero = intbv(0)[axes:]
         if released and axis < axes:
             zero[slot] = 1

@@ -19,9 +19,6 @@ def pulse_source(direct_mode, count_strobe, count_value, halt, pulse_period, pul
     its ``mask`` bit set), ``home`` (``Homing``) and ``home_axis``
     (HOME.AXIS as taken); ``command`` (``DirectPulseCommand``: ``load``,
     ``count``, ``period`` and ``retarget`` out).  Parameter: ``axis`` (0 X).
-    The back-off's retarget is the homing's ``zero`` bit of this axis (the
-    homed axis's release), decoded once in the homing unit, so no compare
-    of HOME.AXIS lies between the home switch and the direct pulses' adder.
     All combinational:
 
         clock         _/~\\_/~\\_
@@ -30,13 +27,11 @@ def pulse_source(direct_mode, count_strobe, count_value, halt, pulse_period, pul
     """
     seq_count = pulses.count(axis)
     homeable = axis < 1 << len(home_axis)   # HOME.AXIS can name this axis
-    if homeable and axis >= len(home.zero):
-        raise ValueError(f"pulse_source: axis {axis} has no bit in the homing's zero ({len(home.zero)} axes)")
 
     @always_comb
     def choose_source():
         command.period.next = pulse_period
-        command.retarget.next = home.zero[axis]
+        command.retarget.next = home.busy and home.retarget and home_axis == axis
         if home.busy:
             command.load.next = home.load and home_axis == axis
             command.count.next = home.count
