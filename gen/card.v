@@ -316,7 +316,7 @@ reg card_core0_regs_fifo1_soft_reset_taken;
 reg card_core0_regs_fifo1_tick;
 reg [11:0] card_core0_regs_fifo1_written_addr;
 reg [31:0] card_core0_regs_fifo1_written_data;
-reg [31:0] card_core0_regs_fifo1_written_mask;
+reg [22:0] card_core0_regs_fifo1_written_mask;
 reg [31:0] card_core0_regs_fifo1_read_end;
 reg [1:0] card_core0_regs_fifo1_control;
 reg card_core0_regs_fifo1_home_busy;
@@ -970,17 +970,16 @@ wire card_core0_regs_fifo1_feed_rate1_below;
 wire card_core0_regs_fifo1_feed_rate1_can_lower;
 wire card_core0_regs_fifo1_feed_rate1_can_raise;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_count;
-reg [15:0] card_core0_regs_fifo1_feed_rate1_count_down;
+reg [15:0] card_core0_regs_fifo1_feed_rate1_count_addend;
 wire card_core0_regs_fifo1_feed_rate1_count_empty;
 wire card_core0_regs_fifo1_feed_rate1_count_last;
-reg [15:0] card_core0_regs_fifo1_feed_rate1_count_up;
+wire [15:0] card_core0_regs_fifo1_feed_rate1_count_moved;
 reg card_core0_regs_fifo1_feed_rate1_decelerate;
-reg [16:0] card_core0_regs_fifo1_feed_rate1_floor_limit;
-reg [16:0] card_core0_regs_fifo1_feed_rate1_lower_limit;
 wire [15:0] card_core0_regs_fifo1_feed_rate1_lowered;
+wire signed [16:0] card_core0_regs_fifo1_feed_rate1_lowered_full;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_phase;
-reg signed [16:0] card_core0_regs_fifo1_feed_rate1_raise_limit;
 wire [15:0] card_core0_regs_fifo1_feed_rate1_raised;
+wire [16:0] card_core0_regs_fifo1_feed_rate1_raised_full;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_rate;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_start_s;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_step_s;
@@ -2756,7 +2755,7 @@ assign card_core0_regs_fifo1_reg_word42_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word42_merged = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word42_merged = ((card_core0_regs_fifo1_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | card_core0_regs_fifo1_written_data[2-1:0]);
 
 
 
@@ -2805,7 +2804,7 @@ assign card_core0_regs_fifo1_reg_word43_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word43_merged = (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]);
+assign card_core0_regs_fifo1_reg_word43_merged = card_core0_regs_fifo1_written_data[4-1:0];
 
 
 
@@ -2879,7 +2878,7 @@ assign card_core0_regs_fifo1_reg_word45_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word45_merged = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]));
+assign card_core0_regs_fifo1_reg_word45_merged = ((card_core0_regs_fifo1_reg_word45_shown & (~card_core0_regs_fifo1_written_mask[10-1:0])) | card_core0_regs_fifo1_written_data[10-1:0]);
 
 
 
@@ -2928,7 +2927,7 @@ assign card_core0_regs_fifo1_reg_word46_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word46_merged = (card_core0_regs_fifo1_written_data[10-1:0] & card_core0_regs_fifo1_written_mask[10-1:0]);
+assign card_core0_regs_fifo1_reg_word46_merged = card_core0_regs_fifo1_written_data[10-1:0];
 
 
 
@@ -2977,7 +2976,7 @@ assign card_core0_regs_fifo1_reg_word47_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word47_merged = ((card_core0_regs_fifo1_reg_word47_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3000,7 +2999,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word47_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word47_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3111,7 +3110,7 @@ assign card_core0_regs_fifo1_reg_word51_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word51_merged = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word51_merged = ((card_core0_regs_fifo1_reg_word51_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3131,7 +3130,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word51_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word51_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word51_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word51_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3220,7 +3219,7 @@ assign card_core0_regs_fifo1_reg_word52_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word52_merged = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word52_merged = ((card_core0_regs_fifo1_reg_word52_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3240,7 +3239,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word52_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word52_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word52_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word52_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3329,7 +3328,7 @@ assign card_core0_regs_fifo1_reg_word53_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word53_merged = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word53_merged = ((card_core0_regs_fifo1_ramp_step & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3349,7 +3348,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word53_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word53_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word53_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word53_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3430,7 +3429,7 @@ assign card_core0_regs_fifo1_reg_word54_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word54_merged = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word54_merged = ((card_core0_regs_fifo1_reg_word54_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -3450,7 +3449,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word54_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word54_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word54_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word54_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -3539,7 +3538,7 @@ assign card_core0_regs_fifo1_reg_word55_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word55_merged = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word55_merged = ((card_core0_regs_fifo1_reg_word55_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -3559,7 +3558,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word55_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word55_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word55_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word55_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -3648,7 +3647,7 @@ assign card_core0_regs_fifo1_reg_word56_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word56_merged = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word56_merged = ((card_core0_regs_fifo1_reg_word56_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -3668,7 +3667,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word56_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word56_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word56_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word56_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -3757,7 +3756,7 @@ assign card_core0_regs_fifo1_reg_word57_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word57_merged = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | (card_core0_regs_fifo1_written_data[6-1:0] & card_core0_regs_fifo1_written_mask[6-1:0]));
+assign card_core0_regs_fifo1_reg_word57_merged = ((card_core0_regs_fifo1_reg_word57_shown & (~card_core0_regs_fifo1_written_mask[6-1:0])) | card_core0_regs_fifo1_written_data[6-1:0]);
 
 
 
@@ -3806,7 +3805,7 @@ assign card_core0_regs_fifo1_reg_word58_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word58_merged = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word58_merged = ((card_core0_regs_fifo1_reg_word58_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3826,7 +3825,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word58_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word58_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word58_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word58_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -3915,7 +3914,7 @@ assign card_core0_regs_fifo1_reg_word59_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word59_merged = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word59_merged = ((card_core0_regs_fifo1_reg_word59_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -3935,7 +3934,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word59_set_low = card_core0_regs_fifo1_set_value[16-1:0];
 assign card_core0_regs_fifo1_reg_word59_set_zero = (card_core0_regs_fifo1_set_value[32-1:16] == 0);
-assign card_core0_regs_fifo1_reg_word59_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word59_bus_zero = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4024,7 +4023,7 @@ assign card_core0_regs_fifo1_reg_word60_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word60_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word60_merged = card_core0_regs_fifo1_written_data[24-1:0];
 
 
 always @(card_core0_regs_fifo1_reg_word60_zero_above, card_core0_regs_fifo1_reg_word60_sign, card_core0_regs_fifo1_reg_word60_ones_above, card_core0_regs_fifo1_reg_word60_merged) begin: card_core0_regs_fifo1_reg_word60__limit25_clamp_signed
@@ -4044,9 +4043,9 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word60_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-assign card_core0_regs_fifo1_reg_word60_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
-assign card_core0_regs_fifo1_reg_word60_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
+assign card_core0_regs_fifo1_reg_word60_zero_above = (card_core0_regs_fifo1_written_data[32-1:24] == 0);
+assign card_core0_regs_fifo1_reg_word60_ones_above = (card_core0_regs_fifo1_written_data[32-1:24] == 255);
+assign card_core0_regs_fifo1_reg_word60_sign = card_core0_regs_fifo1_written_data[31];
 
 
 
@@ -4094,7 +4093,7 @@ assign card_core0_regs_fifo1_reg_word61_mine_write = ((card_core0_regs_fifo1_wri
 
 
 
-assign card_core0_regs_fifo1_reg_word61_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word61_merged = card_core0_regs_fifo1_written_data[24-1:0];
 
 
 always @(card_core0_regs_fifo1_reg_word61_zero_above, card_core0_regs_fifo1_reg_word61_sign, card_core0_regs_fifo1_reg_word61_ones_above, card_core0_regs_fifo1_reg_word61_merged) begin: card_core0_regs_fifo1_reg_word61__limit26_clamp_signed
@@ -4114,9 +4113,9 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word61_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
-assign card_core0_regs_fifo1_reg_word61_ones_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 255);
-assign card_core0_regs_fifo1_reg_word61_sign = (card_core0_regs_fifo1_written_data[31] && card_core0_regs_fifo1_written_mask[31]);
+assign card_core0_regs_fifo1_reg_word61_zero_above = (card_core0_regs_fifo1_written_data[32-1:24] == 0);
+assign card_core0_regs_fifo1_reg_word61_ones_above = (card_core0_regs_fifo1_written_data[32-1:24] == 255);
+assign card_core0_regs_fifo1_reg_word61_sign = card_core0_regs_fifo1_written_data[31];
 
 
 
@@ -4230,7 +4229,7 @@ assign card_core0_regs_fifo1_reg_word65_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word65_merged = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word65_merged = ((card_core0_regs_fifo1_machine_control & (~card_core0_regs_fifo1_written_mask[2-1:0])) | card_core0_regs_fifo1_written_data[2-1:0]);
 
 
 
@@ -4326,7 +4325,7 @@ assign card_core0_regs_fifo1_reg_word68_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word68_merged = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]));
+assign card_core0_regs_fifo1_reg_word68_merged = ((card_core0_regs_fifo1_reg_word68_shown & (~card_core0_regs_fifo1_written_mask[7-1:0])) | card_core0_regs_fifo1_written_data[7-1:0]);
 
 
 
@@ -4375,7 +4374,7 @@ assign card_core0_regs_fifo1_reg_word69_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word69_merged = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | (card_core0_regs_fifo1_written_data[4-1:0] & card_core0_regs_fifo1_written_mask[4-1:0]));
+assign card_core0_regs_fifo1_reg_word69_merged = ((card_core0_regs_fifo1_reg_word69_shown & (~card_core0_regs_fifo1_written_mask[4-1:0])) | card_core0_regs_fifo1_written_data[4-1:0]);
 
 
 
@@ -4402,7 +4401,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word69_zero_above = ((card_core0_regs_fifo1_written_data[32-1:4] & card_core0_regs_fifo1_written_mask[32-1:4]) == 0);
+assign card_core0_regs_fifo1_reg_word69_zero_above = (card_core0_regs_fifo1_written_data[32-1:4] == 0);
 
 
 
@@ -4447,7 +4446,7 @@ assign card_core0_regs_fifo1_reg_word70_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word70_merged = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word70_merged = ((card_core0_regs_fifo1_reg_word70_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4474,7 +4473,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word70_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word70_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4519,7 +4518,7 @@ assign card_core0_regs_fifo1_reg_word71_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word71_merged = (card_core0_regs_fifo1_written_data[24-1:0] & card_core0_regs_fifo1_written_mask[24-1:0]);
+assign card_core0_regs_fifo1_reg_word71_merged = card_core0_regs_fifo1_written_data[24-1:0];
 
 
 
@@ -4542,7 +4541,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word71_zero_above = ((card_core0_regs_fifo1_written_data[32-1:24] & card_core0_regs_fifo1_written_mask[32-1:24]) == 0);
+assign card_core0_regs_fifo1_reg_word71_zero_above = (card_core0_regs_fifo1_written_data[32-1:24] == 0);
 
 
 
@@ -4590,7 +4589,7 @@ assign card_core0_regs_fifo1_reg_word72_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word72_merged = (card_core0_regs_fifo1_written_data[7-1:0] & card_core0_regs_fifo1_written_mask[7-1:0]);
+assign card_core0_regs_fifo1_reg_word72_merged = card_core0_regs_fifo1_written_data[7-1:0];
 
 
 
@@ -4664,7 +4663,7 @@ assign card_core0_regs_fifo1_reg_word74_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word74_merged = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word74_merged = ((card_core0_regs_fifo1_reg_word74_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4691,7 +4690,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word74_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word74_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4736,7 +4735,7 @@ assign card_core0_regs_fifo1_reg_word75_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word75_merged = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word75_merged = ((card_core0_regs_fifo1_reg_word75_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4763,7 +4762,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word75_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word75_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4808,7 +4807,7 @@ assign card_core0_regs_fifo1_reg_word76_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | (card_core0_regs_fifo1_written_data[16-1:0] & card_core0_regs_fifo1_written_mask[16-1:0]));
+assign card_core0_regs_fifo1_reg_word76_merged = ((card_core0_regs_fifo1_reg_word76_shown & (~card_core0_regs_fifo1_written_mask[16-1:0])) | card_core0_regs_fifo1_written_data[16-1:0]);
 
 
 
@@ -4831,7 +4830,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word76_zero_above = ((card_core0_regs_fifo1_written_data[32-1:16] & card_core0_regs_fifo1_written_mask[32-1:16]) == 0);
+assign card_core0_regs_fifo1_reg_word76_zero_above = (card_core0_regs_fifo1_written_data[32-1:16] == 0);
 
 
 
@@ -4876,7 +4875,7 @@ assign card_core0_regs_fifo1_reg_word77_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word77_merged = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | (card_core0_regs_fifo1_written_data[23-1:0] & card_core0_regs_fifo1_written_mask[23-1:0]));
+assign card_core0_regs_fifo1_reg_word77_merged = ((card_core0_regs_fifo1_reg_word77_shown & (~card_core0_regs_fifo1_written_mask[23-1:0])) | card_core0_regs_fifo1_written_data[23-1:0]);
 
 
 
@@ -4903,7 +4902,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word77_zero_above = ((card_core0_regs_fifo1_written_data[32-1:23] & card_core0_regs_fifo1_written_mask[32-1:23]) == 0);
+assign card_core0_regs_fifo1_reg_word77_zero_above = (card_core0_regs_fifo1_written_data[32-1:23] == 0);
 
 
 
@@ -4948,7 +4947,7 @@ assign card_core0_regs_fifo1_reg_word78_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word78_merged = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | (card_core0_regs_fifo1_written_data[8-1:0] & card_core0_regs_fifo1_written_mask[8-1:0]));
+assign card_core0_regs_fifo1_reg_word78_merged = ((card_core0_regs_fifo1_reg_word78_shown & (~card_core0_regs_fifo1_written_mask[8-1:0])) | card_core0_regs_fifo1_written_data[8-1:0]);
 
 
 
@@ -4968,7 +4967,7 @@ end
 
 assign card_core0_regs_fifo1_reg_word78_set_low = card_core0_regs_fifo1_set_value[8-1:0];
 assign card_core0_regs_fifo1_reg_word78_set_zero = (card_core0_regs_fifo1_set_value[32-1:8] == 0);
-assign card_core0_regs_fifo1_reg_word78_bus_zero = ((card_core0_regs_fifo1_written_data[32-1:8] & card_core0_regs_fifo1_written_mask[32-1:8]) == 0);
+assign card_core0_regs_fifo1_reg_word78_bus_zero = (card_core0_regs_fifo1_written_data[32-1:8] == 0);
 
 
 
@@ -5057,7 +5056,7 @@ assign card_core0_regs_fifo1_reg_word79_mine_write = (card_core0_regs_fifo1_writ
 
 
 
-assign card_core0_regs_fifo1_reg_word79_merged = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | (card_core0_regs_fifo1_written_data[2-1:0] & card_core0_regs_fifo1_written_mask[2-1:0]));
+assign card_core0_regs_fifo1_reg_word79_merged = ((card_core0_regs_fifo1_step_mode & (~card_core0_regs_fifo1_written_mask[2-1:0])) | card_core0_regs_fifo1_written_data[2-1:0]);
 
 
 
@@ -5084,7 +5083,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_reg_word79_zero_above = ((card_core0_regs_fifo1_written_data[32-1:2] & card_core0_regs_fifo1_written_mask[32-1:2]) == 0);
+assign card_core0_regs_fifo1_reg_word79_zero_above = (card_core0_regs_fifo1_written_data[32-1:2] == 0);
 
 
 
@@ -6030,22 +6029,16 @@ assign card_core0_regs_fifo1_motion_run = (card_core0_regs_fifo1_sequencer1_stat
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_register_settings
     if (reset == 0) begin
+        card_core0_regs_fifo1_feed_rate1_start_s <= 0;
+        card_core0_regs_fifo1_feed_rate1_step_s <= 0;
         card_core0_regs_fifo1_feed_rate1_target_s <= 0;
         card_core0_regs_fifo1_feed_rate1_step_zero <= 1;
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= 0;
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= 0;
-        card_core0_regs_fifo1_feed_rate1_step_s <= 0;
-        card_core0_regs_fifo1_feed_rate1_start_s <= 0;
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= 0;
     end
     else begin
         card_core0_regs_fifo1_feed_rate1_target_s <= card_core0_regs_fifo1_reg_word51_shown;
         card_core0_regs_fifo1_feed_rate1_start_s <= card_core0_regs_fifo1_reg_word52_shown;
         card_core0_regs_fifo1_feed_rate1_step_s <= card_core0_regs_fifo1_ramp_step;
         card_core0_regs_fifo1_feed_rate1_step_zero <= (card_core0_regs_fifo1_ramp_step == 0);
-        card_core0_regs_fifo1_feed_rate1_raise_limit <= ($signed({1'b0, card_core0_regs_fifo1_reg_word51_shown}) - $signed({1'b0, card_core0_regs_fifo1_ramp_step}));
-        card_core0_regs_fifo1_feed_rate1_lower_limit <= ({1'b0, card_core0_regs_fifo1_reg_word51_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
-        card_core0_regs_fifo1_feed_rate1_floor_limit <= ({1'b0, card_core0_regs_fifo1_reg_word52_shown} + {1'b0, card_core0_regs_fifo1_ramp_step});
     end
 end
 
@@ -6062,26 +6055,32 @@ end
 
 
 assign card_core0_regs_fifo1_feed_rate1_total = ({1'b0, card_core0_regs_fifo1_feed_rate1_phase} + {1'b0, card_core0_regs_fifo1_feed_rate1_rate});
-assign card_core0_regs_fifo1_feed_rate1_raised = (card_core0_regs_fifo1_feed_rate1_rate + card_core0_regs_fifo1_feed_rate1_step_s);
-assign card_core0_regs_fifo1_feed_rate1_lowered = (card_core0_regs_fifo1_feed_rate1_rate - card_core0_regs_fifo1_feed_rate1_step_s);
-assign card_core0_regs_fifo1_feed_rate1_can_raise = ($signed({1'b0, card_core0_regs_fifo1_feed_rate1_rate}) <= card_core0_regs_fifo1_feed_rate1_raise_limit);
-assign card_core0_regs_fifo1_feed_rate1_can_lower = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= card_core0_regs_fifo1_feed_rate1_lower_limit);
-assign card_core0_regs_fifo1_feed_rate1_above_floor = ({1'b0, card_core0_regs_fifo1_feed_rate1_rate} >= card_core0_regs_fifo1_feed_rate1_floor_limit);
+assign card_core0_regs_fifo1_feed_rate1_raised_full = (card_core0_regs_fifo1_feed_rate1_rate + card_core0_regs_fifo1_feed_rate1_step_s);
+assign card_core0_regs_fifo1_feed_rate1_lowered_full = ($signed({1'b0, card_core0_regs_fifo1_feed_rate1_rate}) - $signed({1'b0, card_core0_regs_fifo1_feed_rate1_step_s}));
 assign card_core0_regs_fifo1_feed_rate1_below = (card_core0_regs_fifo1_feed_rate1_rate < card_core0_regs_fifo1_feed_rate1_target_s);
 assign card_core0_regs_fifo1_feed_rate1_above = (card_core0_regs_fifo1_feed_rate1_rate > card_core0_regs_fifo1_feed_rate1_target_s);
 assign card_core0_regs_fifo1_feed_rate1_count_empty = (card_core0_regs_fifo1_feed_rate1_count == 2);
 assign card_core0_regs_fifo1_feed_rate1_count_last = (card_core0_regs_fifo1_feed_rate1_count == (2 + 1));
 
 
-always @(card_core0_regs_fifo1_feed_rate1_count_empty, card_core0_regs_fifo1_feed_rate1_count) begin: card_core0_regs_fifo1_feed_rate1_count_steps
-    card_core0_regs_fifo1_feed_rate1_count_up = (card_core0_regs_fifo1_feed_rate1_count + 1);
-    if (card_core0_regs_fifo1_feed_rate1_count_empty) begin
-        card_core0_regs_fifo1_feed_rate1_count_down = card_core0_regs_fifo1_feed_rate1_count;
-    end
-    else begin
-        card_core0_regs_fifo1_feed_rate1_count_down = (card_core0_regs_fifo1_feed_rate1_count - 1);
+
+assign card_core0_regs_fifo1_feed_rate1_raised = card_core0_regs_fifo1_feed_rate1_raised_full[16-1:0];
+assign card_core0_regs_fifo1_feed_rate1_lowered = card_core0_regs_fifo1_feed_rate1_lowered_full[16-1:0];
+assign card_core0_regs_fifo1_feed_rate1_can_raise = (card_core0_regs_fifo1_feed_rate1_raised_full <= {1'b0, card_core0_regs_fifo1_feed_rate1_target_s});
+assign card_core0_regs_fifo1_feed_rate1_can_lower = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_target_s}));
+assign card_core0_regs_fifo1_feed_rate1_above_floor = (card_core0_regs_fifo1_feed_rate1_lowered_full >= $signed({1'b0, card_core0_regs_fifo1_feed_rate1_start_s}));
+
+
+always @(card_core0_regs_fifo1_feed_rate1_below, card_core0_regs_fifo1_feed_pause, card_core0_regs_fifo1_feed_rate1_decelerate) begin: card_core0_regs_fifo1_feed_rate1_count_direction
+    card_core0_regs_fifo1_feed_rate1_count_addend = ((1 << 16) - 1);
+    if ((card_core0_regs_fifo1_feed_rate1_below && (!(card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)))) begin
+        card_core0_regs_fifo1_feed_rate1_count_addend = 1;
     end
 end
+
+
+
+assign card_core0_regs_fifo1_feed_rate1_count_moved = (card_core0_regs_fifo1_feed_rate1_count + card_core0_regs_fifo1_feed_rate1_count_addend);
 
 
 
@@ -6122,14 +6121,14 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_feed_rate1_r
             end
             else if ((card_core0_regs_fifo1_feed_rate1_decelerate || card_core0_regs_fifo1_feed_pause)) begin
                 if ((!card_core0_regs_fifo1_feed_rate1_count_empty)) begin
-                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+                    card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_moved;
                 end
             end
             else if (card_core0_regs_fifo1_feed_rate1_below) begin
-                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_up;
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_moved;
             end
-            else if (card_core0_regs_fifo1_feed_rate1_above) begin
-                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_down;
+            else if ((card_core0_regs_fifo1_feed_rate1_above && (!card_core0_regs_fifo1_feed_rate1_count_empty))) begin
+                card_core0_regs_fifo1_feed_rate1_count <= card_core0_regs_fifo1_feed_rate1_count_moved;
             end
         end
     end
@@ -6749,16 +6748,16 @@ end
 
 
 assign card_core0_regs_fifo1_input_filter1_level = (card_core0_regs_fifo1_input_filter1_inputs_raw ^ card_core0_regs_fifo1_reg_word68_shown);
-assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 0);
+assign card_core0_regs_fifo1_input_filter1_sample = (card_core0_regs_fifo1_input_filter1_prescale == 1);
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_input_filter1_prescaler
     if (reset == 0) begin
-        card_core0_regs_fifo1_input_filter1_prescale <= 0;
+        card_core0_regs_fifo1_input_filter1_prescale <= 1;
     end
     else begin
         if (card_core0_regs_fifo1_input_filter1_sample) begin
-            card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_reg_word70_shown - 1);
+            card_core0_regs_fifo1_input_filter1_prescale <= card_core0_regs_fifo1_reg_word70_shown;
         end
         else begin
             card_core0_regs_fifo1_input_filter1_prescale <= (card_core0_regs_fifo1_input_filter1_prescale - 1);
@@ -7337,8 +7336,8 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
     else begin
         card_core0_regs_fifo1_io_written <= card_core0_regs_fifo1_io_write;
         card_core0_regs_fifo1_written_addr <= pci_slave1_pci_requests1_local_addr;
-        card_core0_regs_fifo1_written_data <= pci_slave1_pci_requests1_local_wdata;
-        card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask;
+        card_core0_regs_fifo1_written_data <= (pci_slave1_pci_requests1_local_wdata & card_core0_regs_fifo1_byte_mask);
+        card_core0_regs_fifo1_written_mask <= card_core0_regs_fifo1_byte_mask[23-1:0];
     end
 end
 
@@ -7378,7 +7377,7 @@ end
 
 
 
-assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || card_core0_regs_fifo1_releasing || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1] && card_core0_regs_fifo1_written_mask[1]));
+assign card_core0_regs_fifo1_fifo_flush = (card_core0_regs_fifo1_soft_reset_taken || card_core0_regs_fifo1_releasing || (card_core0_regs_fifo1_io_written && (card_core0_regs_fifo1_written_addr == 8) && card_core0_regs_fifo1_discard_on_clear && card_core0_regs_fifo1_written_data[1]));
 
 
 always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_outputs_before

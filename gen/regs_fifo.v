@@ -231,7 +231,7 @@ reg soft_reset_taken;
 reg tick;
 reg [15:0] written_addr;
 reg [31:0] written_data;
-reg [31:0] written_mask;
+reg [22:0] written_mask;
 reg [31:0] read_end;
 reg [1:0] control;
 reg home_busy;
@@ -865,17 +865,16 @@ wire feed_rate0_below;
 wire feed_rate0_can_lower;
 wire feed_rate0_can_raise;
 reg [15:0] feed_rate0_count;
-reg [15:0] feed_rate0_count_down;
+reg [15:0] feed_rate0_count_addend;
 wire feed_rate0_count_empty;
 wire feed_rate0_count_last;
-reg [15:0] feed_rate0_count_up;
+wire [15:0] feed_rate0_count_moved;
 reg feed_rate0_decelerate;
-reg [16:0] feed_rate0_floor_limit;
-reg [16:0] feed_rate0_lower_limit;
 wire [15:0] feed_rate0_lowered;
+wire signed [16:0] feed_rate0_lowered_full;
 reg [15:0] feed_rate0_phase;
-reg signed [16:0] feed_rate0_raise_limit;
 wire [15:0] feed_rate0_raised;
+wire [16:0] feed_rate0_raised_full;
 reg [15:0] feed_rate0_rate;
 reg [15:0] feed_rate0_start_s;
 reg [15:0] feed_rate0_step_s;
@@ -1259,7 +1258,7 @@ assign reg_word1_mine_write = (written_addr == 4);
 
 
 
-assign reg_word1_merged = ((control & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
+assign reg_word1_merged = ((control & (~written_mask[2-1:0])) | written_data[2-1:0]);
 
 
 
@@ -1308,7 +1307,7 @@ assign reg_word2_mine_write = (written_addr == 8);
 
 
 
-assign reg_word2_merged = (written_data[4-1:0] & written_mask[4-1:0]);
+assign reg_word2_merged = written_data[4-1:0];
 
 
 
@@ -1382,7 +1381,7 @@ assign reg_word4_mine_write = (written_addr == 16);
 
 
 
-assign reg_word4_merged = ((reg_word4_shown & (~written_mask[10-1:0])) | (written_data[10-1:0] & written_mask[10-1:0]));
+assign reg_word4_merged = ((reg_word4_shown & (~written_mask[10-1:0])) | written_data[10-1:0]);
 
 
 
@@ -1431,7 +1430,7 @@ assign reg_word5_mine_write = (written_addr == 20);
 
 
 
-assign reg_word5_merged = (written_data[10-1:0] & written_mask[10-1:0]);
+assign reg_word5_merged = written_data[10-1:0];
 
 
 
@@ -1480,7 +1479,7 @@ assign reg_word6_mine_write = (written_addr == 24);
 
 
 
-assign reg_word6_merged = ((reg_word6_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word6_merged = ((reg_word6_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -1503,7 +1502,7 @@ end
 
 
 
-assign reg_word6_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word6_zero_above = (written_data[32-1:16] == 0);
 
 
 
@@ -1614,7 +1613,7 @@ assign reg_word10_mine_write = (written_addr == 40);
 
 
 
-assign reg_word10_merged = ((reg_word10_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word10_merged = ((reg_word10_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -1634,7 +1633,7 @@ end
 
 assign reg_word10_set_low = set_value[16-1:0];
 assign reg_word10_set_zero = (set_value[32-1:16] == 0);
-assign reg_word10_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word10_bus_zero = (written_data[32-1:16] == 0);
 
 
 
@@ -1723,7 +1722,7 @@ assign reg_word11_mine_write = (written_addr == 44);
 
 
 
-assign reg_word11_merged = ((reg_word11_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word11_merged = ((reg_word11_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -1743,7 +1742,7 @@ end
 
 assign reg_word11_set_low = set_value[16-1:0];
 assign reg_word11_set_zero = (set_value[32-1:16] == 0);
-assign reg_word11_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word11_bus_zero = (written_data[32-1:16] == 0);
 
 
 
@@ -1832,7 +1831,7 @@ assign reg_word12_mine_write = (written_addr == 48);
 
 
 
-assign reg_word12_merged = ((ramp_step & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word12_merged = ((ramp_step & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -1852,7 +1851,7 @@ end
 
 assign reg_word12_set_low = set_value[16-1:0];
 assign reg_word12_set_zero = (set_value[32-1:16] == 0);
-assign reg_word12_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word12_bus_zero = (written_data[32-1:16] == 0);
 
 
 
@@ -1933,7 +1932,7 @@ assign reg_word13_mine_write = (written_addr == 52);
 
 
 
-assign reg_word13_merged = ((reg_word13_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+assign reg_word13_merged = ((reg_word13_shown & (~written_mask[8-1:0])) | written_data[8-1:0]);
 
 
 
@@ -1953,7 +1952,7 @@ end
 
 assign reg_word13_set_low = set_value[8-1:0];
 assign reg_word13_set_zero = (set_value[32-1:8] == 0);
-assign reg_word13_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+assign reg_word13_bus_zero = (written_data[32-1:8] == 0);
 
 
 
@@ -2042,7 +2041,7 @@ assign reg_word14_mine_write = (written_addr == 56);
 
 
 
-assign reg_word14_merged = ((reg_word14_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+assign reg_word14_merged = ((reg_word14_shown & (~written_mask[8-1:0])) | written_data[8-1:0]);
 
 
 
@@ -2062,7 +2061,7 @@ end
 
 assign reg_word14_set_low = set_value[8-1:0];
 assign reg_word14_set_zero = (set_value[32-1:8] == 0);
-assign reg_word14_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+assign reg_word14_bus_zero = (written_data[32-1:8] == 0);
 
 
 
@@ -2151,7 +2150,7 @@ assign reg_word15_mine_write = (written_addr == 60);
 
 
 
-assign reg_word15_merged = ((reg_word15_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+assign reg_word15_merged = ((reg_word15_shown & (~written_mask[8-1:0])) | written_data[8-1:0]);
 
 
 
@@ -2171,7 +2170,7 @@ end
 
 assign reg_word15_set_low = set_value[8-1:0];
 assign reg_word15_set_zero = (set_value[32-1:8] == 0);
-assign reg_word15_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+assign reg_word15_bus_zero = (written_data[32-1:8] == 0);
 
 
 
@@ -2260,7 +2259,7 @@ assign reg_word16_mine_write = (written_addr == 64);
 
 
 
-assign reg_word16_merged = ((reg_word16_shown & (~written_mask[6-1:0])) | (written_data[6-1:0] & written_mask[6-1:0]));
+assign reg_word16_merged = ((reg_word16_shown & (~written_mask[6-1:0])) | written_data[6-1:0]);
 
 
 
@@ -2309,7 +2308,7 @@ assign reg_word17_mine_write = ((written_addr == 68) || (reg_word8_in_block_writ
 
 
 
-assign reg_word17_merged = ((reg_word17_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word17_merged = ((reg_word17_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -2329,7 +2328,7 @@ end
 
 assign reg_word17_set_low = set_value[16-1:0];
 assign reg_word17_set_zero = (set_value[32-1:16] == 0);
-assign reg_word17_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word17_bus_zero = (written_data[32-1:16] == 0);
 
 
 
@@ -2418,7 +2417,7 @@ assign reg_word18_mine_write = ((written_addr == 72) || (reg_word9_in_block_writ
 
 
 
-assign reg_word18_merged = ((reg_word18_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word18_merged = ((reg_word18_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -2438,7 +2437,7 @@ end
 
 assign reg_word18_set_low = set_value[16-1:0];
 assign reg_word18_set_zero = (set_value[32-1:16] == 0);
-assign reg_word18_bus_zero = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word18_bus_zero = (written_data[32-1:16] == 0);
 
 
 
@@ -2527,7 +2526,7 @@ assign reg_word19_mine_write = ((written_addr == 76) || (reg_word8_in_block_writ
 
 
 
-assign reg_word19_merged = (written_data[24-1:0] & written_mask[24-1:0]);
+assign reg_word19_merged = written_data[24-1:0];
 
 
 always @(reg_word19_zero_above, reg_word19_sign, reg_word19_ones_above, reg_word19_merged) begin: reg_word19__limit6_clamp_signed
@@ -2547,9 +2546,9 @@ end
 
 
 
-assign reg_word19_zero_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
-assign reg_word19_ones_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 255);
-assign reg_word19_sign = (written_data[31] && written_mask[31]);
+assign reg_word19_zero_above = (written_data[32-1:24] == 0);
+assign reg_word19_ones_above = (written_data[32-1:24] == 255);
+assign reg_word19_sign = written_data[31];
 
 
 
@@ -2597,7 +2596,7 @@ assign reg_word20_mine_write = ((written_addr == 80) || (reg_word9_in_block_writ
 
 
 
-assign reg_word20_merged = (written_data[24-1:0] & written_mask[24-1:0]);
+assign reg_word20_merged = written_data[24-1:0];
 
 
 always @(reg_word20_zero_above, reg_word20_sign, reg_word20_ones_above, reg_word20_merged) begin: reg_word20__limit7_clamp_signed
@@ -2617,9 +2616,9 @@ end
 
 
 
-assign reg_word20_zero_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
-assign reg_word20_ones_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 255);
-assign reg_word20_sign = (written_data[31] && written_mask[31]);
+assign reg_word20_zero_above = (written_data[32-1:24] == 0);
+assign reg_word20_ones_above = (written_data[32-1:24] == 255);
+assign reg_word20_sign = written_data[31];
 
 
 
@@ -2733,7 +2732,7 @@ assign reg_word24_mine_write = (written_addr == 96);
 
 
 
-assign reg_word24_merged = ((machine_control & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
+assign reg_word24_merged = ((machine_control & (~written_mask[2-1:0])) | written_data[2-1:0]);
 
 
 
@@ -2829,7 +2828,7 @@ assign reg_word27_mine_write = (written_addr == 108);
 
 
 
-assign reg_word27_merged = ((reg_word27_shown & (~written_mask[7-1:0])) | (written_data[7-1:0] & written_mask[7-1:0]));
+assign reg_word27_merged = ((reg_word27_shown & (~written_mask[7-1:0])) | written_data[7-1:0]);
 
 
 
@@ -2878,7 +2877,7 @@ assign reg_word28_mine_write = (written_addr == 112);
 
 
 
-assign reg_word28_merged = ((reg_word28_shown & (~written_mask[4-1:0])) | (written_data[4-1:0] & written_mask[4-1:0]));
+assign reg_word28_merged = ((reg_word28_shown & (~written_mask[4-1:0])) | written_data[4-1:0]);
 
 
 
@@ -2905,7 +2904,7 @@ end
 
 
 
-assign reg_word28_zero_above = ((written_data[32-1:4] & written_mask[32-1:4]) == 0);
+assign reg_word28_zero_above = (written_data[32-1:4] == 0);
 
 
 
@@ -2950,7 +2949,7 @@ assign reg_word29_mine_write = (written_addr == 116);
 
 
 
-assign reg_word29_merged = ((reg_word29_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word29_merged = ((reg_word29_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -2977,7 +2976,7 @@ end
 
 
 
-assign reg_word29_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word29_zero_above = (written_data[32-1:16] == 0);
 
 
 
@@ -3022,7 +3021,7 @@ assign reg_word30_mine_write = (written_addr == 120);
 
 
 
-assign reg_word30_merged = (written_data[24-1:0] & written_mask[24-1:0]);
+assign reg_word30_merged = written_data[24-1:0];
 
 
 
@@ -3045,7 +3044,7 @@ end
 
 
 
-assign reg_word30_zero_above = ((written_data[32-1:24] & written_mask[32-1:24]) == 0);
+assign reg_word30_zero_above = (written_data[32-1:24] == 0);
 
 
 
@@ -3093,7 +3092,7 @@ assign reg_word31_mine_write = (written_addr == 124);
 
 
 
-assign reg_word31_merged = (written_data[7-1:0] & written_mask[7-1:0]);
+assign reg_word31_merged = written_data[7-1:0];
 
 
 
@@ -3167,7 +3166,7 @@ assign reg_word33_mine_write = (written_addr == 132);
 
 
 
-assign reg_word33_merged = ((reg_word33_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word33_merged = ((reg_word33_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -3194,7 +3193,7 @@ end
 
 
 
-assign reg_word33_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word33_zero_above = (written_data[32-1:16] == 0);
 
 
 
@@ -3239,7 +3238,7 @@ assign reg_word34_mine_write = (written_addr == 136);
 
 
 
-assign reg_word34_merged = ((reg_word34_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word34_merged = ((reg_word34_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -3266,7 +3265,7 @@ end
 
 
 
-assign reg_word34_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word34_zero_above = (written_data[32-1:16] == 0);
 
 
 
@@ -3311,7 +3310,7 @@ assign reg_word35_mine_write = (written_addr == 140);
 
 
 
-assign reg_word35_merged = ((reg_word35_shown & (~written_mask[16-1:0])) | (written_data[16-1:0] & written_mask[16-1:0]));
+assign reg_word35_merged = ((reg_word35_shown & (~written_mask[16-1:0])) | written_data[16-1:0]);
 
 
 
@@ -3334,7 +3333,7 @@ end
 
 
 
-assign reg_word35_zero_above = ((written_data[32-1:16] & written_mask[32-1:16]) == 0);
+assign reg_word35_zero_above = (written_data[32-1:16] == 0);
 
 
 
@@ -3379,7 +3378,7 @@ assign reg_word36_mine_write = (written_addr == 144);
 
 
 
-assign reg_word36_merged = ((reg_word36_shown & (~written_mask[23-1:0])) | (written_data[23-1:0] & written_mask[23-1:0]));
+assign reg_word36_merged = ((reg_word36_shown & (~written_mask[23-1:0])) | written_data[23-1:0]);
 
 
 
@@ -3406,7 +3405,7 @@ end
 
 
 
-assign reg_word36_zero_above = ((written_data[32-1:23] & written_mask[32-1:23]) == 0);
+assign reg_word36_zero_above = (written_data[32-1:23] == 0);
 
 
 
@@ -3451,7 +3450,7 @@ assign reg_word37_mine_write = (written_addr == 148);
 
 
 
-assign reg_word37_merged = ((reg_word37_shown & (~written_mask[8-1:0])) | (written_data[8-1:0] & written_mask[8-1:0]));
+assign reg_word37_merged = ((reg_word37_shown & (~written_mask[8-1:0])) | written_data[8-1:0]);
 
 
 
@@ -3471,7 +3470,7 @@ end
 
 assign reg_word37_set_low = set_value[8-1:0];
 assign reg_word37_set_zero = (set_value[32-1:8] == 0);
-assign reg_word37_bus_zero = ((written_data[32-1:8] & written_mask[32-1:8]) == 0);
+assign reg_word37_bus_zero = (written_data[32-1:8] == 0);
 
 
 
@@ -3560,7 +3559,7 @@ assign reg_word38_mine_write = (written_addr == 152);
 
 
 
-assign reg_word38_merged = ((step_mode & (~written_mask[2-1:0])) | (written_data[2-1:0] & written_mask[2-1:0]));
+assign reg_word38_merged = ((step_mode & (~written_mask[2-1:0])) | written_data[2-1:0]);
 
 
 
@@ -3587,7 +3586,7 @@ end
 
 
 
-assign reg_word38_zero_above = ((written_data[32-1:2] & written_mask[32-1:2]) == 0);
+assign reg_word38_zero_above = (written_data[32-1:2] == 0);
 
 
 
@@ -4533,22 +4532,16 @@ assign motion_run = (sequencer0_state == 3'b001);
 
 always @(posedge clock, negedge reset) begin: feed_rate0_register_settings
     if (reset == 0) begin
+        feed_rate0_start_s <= 0;
+        feed_rate0_step_s <= 0;
         feed_rate0_target_s <= 0;
         feed_rate0_step_zero <= 1;
-        feed_rate0_lower_limit <= 0;
-        feed_rate0_floor_limit <= 0;
-        feed_rate0_step_s <= 0;
-        feed_rate0_start_s <= 0;
-        feed_rate0_raise_limit <= 0;
     end
     else begin
         feed_rate0_target_s <= reg_word10_shown;
         feed_rate0_start_s <= reg_word11_shown;
         feed_rate0_step_s <= ramp_step;
         feed_rate0_step_zero <= (ramp_step == 0);
-        feed_rate0_raise_limit <= ($signed({1'b0, reg_word10_shown}) - $signed({1'b0, ramp_step}));
-        feed_rate0_lower_limit <= ({1'b0, reg_word10_shown} + {1'b0, ramp_step});
-        feed_rate0_floor_limit <= ({1'b0, reg_word11_shown} + {1'b0, ramp_step});
     end
 end
 
@@ -4565,26 +4558,32 @@ end
 
 
 assign feed_rate0_total = ({1'b0, feed_rate0_phase} + {1'b0, feed_rate0_rate});
-assign feed_rate0_raised = (feed_rate0_rate + feed_rate0_step_s);
-assign feed_rate0_lowered = (feed_rate0_rate - feed_rate0_step_s);
-assign feed_rate0_can_raise = ($signed({1'b0, feed_rate0_rate}) <= feed_rate0_raise_limit);
-assign feed_rate0_can_lower = ({1'b0, feed_rate0_rate} >= feed_rate0_lower_limit);
-assign feed_rate0_above_floor = ({1'b0, feed_rate0_rate} >= feed_rate0_floor_limit);
+assign feed_rate0_raised_full = (feed_rate0_rate + feed_rate0_step_s);
+assign feed_rate0_lowered_full = ($signed({1'b0, feed_rate0_rate}) - $signed({1'b0, feed_rate0_step_s}));
 assign feed_rate0_below = (feed_rate0_rate < feed_rate0_target_s);
 assign feed_rate0_above = (feed_rate0_rate > feed_rate0_target_s);
 assign feed_rate0_count_empty = (feed_rate0_count == 2);
 assign feed_rate0_count_last = (feed_rate0_count == (2 + 1));
 
 
-always @(feed_rate0_count_empty, feed_rate0_count) begin: feed_rate0_count_steps
-    feed_rate0_count_up = (feed_rate0_count + 1);
-    if (feed_rate0_count_empty) begin
-        feed_rate0_count_down = feed_rate0_count;
-    end
-    else begin
-        feed_rate0_count_down = (feed_rate0_count - 1);
+
+assign feed_rate0_raised = feed_rate0_raised_full[16-1:0];
+assign feed_rate0_lowered = feed_rate0_lowered_full[16-1:0];
+assign feed_rate0_can_raise = (feed_rate0_raised_full <= {1'b0, feed_rate0_target_s});
+assign feed_rate0_can_lower = (feed_rate0_lowered_full >= $signed({1'b0, feed_rate0_target_s}));
+assign feed_rate0_above_floor = (feed_rate0_lowered_full >= $signed({1'b0, feed_rate0_start_s}));
+
+
+always @(feed_rate0_below, feed_pause, feed_rate0_decelerate) begin: feed_rate0_count_direction
+    feed_rate0_count_addend = ((1 << 16) - 1);
+    if ((feed_rate0_below && (!(feed_rate0_decelerate || feed_pause)))) begin
+        feed_rate0_count_addend = 1;
     end
 end
+
+
+
+assign feed_rate0_count_moved = (feed_rate0_count + feed_rate0_count_addend);
 
 
 
@@ -4625,14 +4624,14 @@ always @(posedge clock, negedge reset) begin: feed_rate0_ramp_count
             end
             else if ((feed_rate0_decelerate || feed_pause)) begin
                 if ((!feed_rate0_count_empty)) begin
-                    feed_rate0_count <= feed_rate0_count_down;
+                    feed_rate0_count <= feed_rate0_count_moved;
                 end
             end
             else if (feed_rate0_below) begin
-                feed_rate0_count <= feed_rate0_count_up;
+                feed_rate0_count <= feed_rate0_count_moved;
             end
-            else if (feed_rate0_above) begin
-                feed_rate0_count <= feed_rate0_count_down;
+            else if ((feed_rate0_above && (!feed_rate0_count_empty))) begin
+                feed_rate0_count <= feed_rate0_count_moved;
             end
         end
     end
@@ -5252,16 +5251,16 @@ end
 
 
 assign input_filter0_level = (input_filter0_inputs_raw ^ reg_word27_shown);
-assign input_filter0_sample = (input_filter0_prescale == 0);
+assign input_filter0_sample = (input_filter0_prescale == 1);
 
 
 always @(posedge clock, negedge reset) begin: input_filter0_prescaler
     if (reset == 0) begin
-        input_filter0_prescale <= 0;
+        input_filter0_prescale <= 1;
     end
     else begin
         if (input_filter0_sample) begin
-            input_filter0_prescale <= (reg_word29_shown - 1);
+            input_filter0_prescale <= reg_word29_shown;
         end
         else begin
             input_filter0_prescale <= (input_filter0_prescale - 1);
@@ -5840,8 +5839,8 @@ always @(posedge clock, negedge reset) begin: write_stage
     else begin
         io_written <= io_write;
         written_addr <= local_addr;
-        written_data <= local_wdata;
-        written_mask <= byte_mask;
+        written_data <= (local_wdata & byte_mask);
+        written_mask <= byte_mask[23-1:0];
     end
 end
 
@@ -5881,7 +5880,7 @@ end
 
 
 
-assign fifo_flush = (soft_reset_taken || releasing || (io_written && (written_addr == 8) && discard_on_clear && written_data[1] && written_mask[1]));
+assign fifo_flush = (soft_reset_taken || releasing || (io_written && (written_addr == 8) && discard_on_clear && written_data[1]));
 
 
 always @(posedge clock, negedge reset) begin: outputs_before

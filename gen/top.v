@@ -339,7 +339,7 @@ reg card1_card_core1_regs_fifo2_soft_reset_taken;
 reg card1_card_core1_regs_fifo2_tick;
 reg [11:0] card1_card_core1_regs_fifo2_written_addr;
 reg [31:0] card1_card_core1_regs_fifo2_written_data;
-reg [31:0] card1_card_core1_regs_fifo2_written_mask;
+reg [22:0] card1_card_core1_regs_fifo2_written_mask;
 reg [31:0] card1_card_core1_regs_fifo2_read_end;
 reg [1:0] card1_card_core1_regs_fifo2_control;
 reg card1_card_core1_regs_fifo2_home_busy;
@@ -993,17 +993,16 @@ wire card1_card_core1_regs_fifo2_feed_rate2_below;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_lower;
 wire card1_card_core1_regs_fifo2_feed_rate2_can_raise;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count;
-reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_down;
+reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_addend;
 wire card1_card_core1_regs_fifo2_feed_rate2_count_empty;
 wire card1_card_core1_regs_fifo2_feed_rate2_count_last;
-reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_up;
+wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_count_moved;
 reg card1_card_core1_regs_fifo2_feed_rate2_decelerate;
-reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_floor_limit;
-reg [16:0] card1_card_core1_regs_fifo2_feed_rate2_lower_limit;
 wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_lowered;
+wire signed [16:0] card1_card_core1_regs_fifo2_feed_rate2_lowered_full;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_phase;
-reg signed [16:0] card1_card_core1_regs_fifo2_feed_rate2_raise_limit;
 wire [15:0] card1_card_core1_regs_fifo2_feed_rate2_raised;
+wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_raised_full;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_rate;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_start_s;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_step_s;
@@ -3587,7 +3586,7 @@ assign card1_card_core1_regs_fifo2_reg_word83_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word83_merged = ((card1_card_core1_regs_fifo2_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word83_merged = ((card1_card_core1_regs_fifo2_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | card1_card_core1_regs_fifo2_written_data[2-1:0]);
 
 
 
@@ -3636,7 +3635,7 @@ assign card1_card_core1_regs_fifo2_reg_word84_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word84_merged = (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word84_merged = card1_card_core1_regs_fifo2_written_data[4-1:0];
 
 
 
@@ -3710,7 +3709,7 @@ assign card1_card_core1_regs_fifo2_reg_word86_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word86_merged = ((card1_card_core1_regs_fifo2_reg_word86_shown & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word86_merged = ((card1_card_core1_regs_fifo2_reg_word86_shown & (~card1_card_core1_regs_fifo2_written_mask[10-1:0])) | card1_card_core1_regs_fifo2_written_data[10-1:0]);
 
 
 
@@ -3759,7 +3758,7 @@ assign card1_card_core1_regs_fifo2_reg_word87_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word87_merged = (card1_card_core1_regs_fifo2_written_data[10-1:0] & card1_card_core1_regs_fifo2_written_mask[10-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word87_merged = card1_card_core1_regs_fifo2_written_data[10-1:0];
 
 
 
@@ -3808,7 +3807,7 @@ assign card1_card_core1_regs_fifo2_reg_word88_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_merged = ((card1_card_core1_regs_fifo2_reg_word88_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word88_merged = ((card1_card_core1_regs_fifo2_reg_word88_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -3831,7 +3830,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word88_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word88_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -3942,7 +3941,7 @@ assign card1_card_core1_regs_fifo2_reg_word92_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word92_merged = ((card1_card_core1_regs_fifo2_reg_word92_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word92_merged = ((card1_card_core1_regs_fifo2_reg_word92_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -3962,7 +3961,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word92_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
 assign card1_card_core1_regs_fifo2_reg_word92_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
-assign card1_card_core1_regs_fifo2_reg_word92_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word92_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -4051,7 +4050,7 @@ assign card1_card_core1_regs_fifo2_reg_word93_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word93_merged = ((card1_card_core1_regs_fifo2_reg_word93_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word93_merged = ((card1_card_core1_regs_fifo2_reg_word93_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -4071,7 +4070,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word93_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
 assign card1_card_core1_regs_fifo2_reg_word93_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
-assign card1_card_core1_regs_fifo2_reg_word93_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word93_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -4160,7 +4159,7 @@ assign card1_card_core1_regs_fifo2_reg_word94_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word94_merged = ((card1_card_core1_regs_fifo2_ramp_step & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word94_merged = ((card1_card_core1_regs_fifo2_ramp_step & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -4180,7 +4179,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word94_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
 assign card1_card_core1_regs_fifo2_reg_word94_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
-assign card1_card_core1_regs_fifo2_reg_word94_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word94_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -4261,7 +4260,7 @@ assign card1_card_core1_regs_fifo2_reg_word95_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word95_merged = ((card1_card_core1_regs_fifo2_reg_word95_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word95_merged = ((card1_card_core1_regs_fifo2_reg_word95_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | card1_card_core1_regs_fifo2_written_data[8-1:0]);
 
 
 
@@ -4281,7 +4280,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word95_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
 assign card1_card_core1_regs_fifo2_reg_word95_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
-assign card1_card_core1_regs_fifo2_reg_word95_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word95_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:8] == 0);
 
 
 
@@ -4370,7 +4369,7 @@ assign card1_card_core1_regs_fifo2_reg_word96_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word96_merged = ((card1_card_core1_regs_fifo2_reg_word96_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word96_merged = ((card1_card_core1_regs_fifo2_reg_word96_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | card1_card_core1_regs_fifo2_written_data[8-1:0]);
 
 
 
@@ -4390,7 +4389,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word96_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
 assign card1_card_core1_regs_fifo2_reg_word96_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
-assign card1_card_core1_regs_fifo2_reg_word96_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word96_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:8] == 0);
 
 
 
@@ -4479,7 +4478,7 @@ assign card1_card_core1_regs_fifo2_reg_word97_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word97_merged = ((card1_card_core1_regs_fifo2_reg_word97_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word97_merged = ((card1_card_core1_regs_fifo2_reg_word97_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | card1_card_core1_regs_fifo2_written_data[8-1:0]);
 
 
 
@@ -4499,7 +4498,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word97_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
 assign card1_card_core1_regs_fifo2_reg_word97_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
-assign card1_card_core1_regs_fifo2_reg_word97_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word97_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:8] == 0);
 
 
 
@@ -4588,7 +4587,7 @@ assign card1_card_core1_regs_fifo2_reg_word98_mine_write = (card1_card_core1_reg
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word98_merged = ((card1_card_core1_regs_fifo2_reg_word98_shown & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | (card1_card_core1_regs_fifo2_written_data[6-1:0] & card1_card_core1_regs_fifo2_written_mask[6-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word98_merged = ((card1_card_core1_regs_fifo2_reg_word98_shown & (~card1_card_core1_regs_fifo2_written_mask[6-1:0])) | card1_card_core1_regs_fifo2_written_data[6-1:0]);
 
 
 
@@ -4637,7 +4636,7 @@ assign card1_card_core1_regs_fifo2_reg_word99_mine_write = ((card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word99_merged = ((card1_card_core1_regs_fifo2_reg_word99_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word99_merged = ((card1_card_core1_regs_fifo2_reg_word99_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -4657,7 +4656,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word99_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
 assign card1_card_core1_regs_fifo2_reg_word99_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
-assign card1_card_core1_regs_fifo2_reg_word99_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word99_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -4746,7 +4745,7 @@ assign card1_card_core1_regs_fifo2_reg_word100_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word100_merged = ((card1_card_core1_regs_fifo2_reg_word100_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word100_merged = ((card1_card_core1_regs_fifo2_reg_word100_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -4766,7 +4765,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word100_set_low = card1_card_core1_regs_fifo2_set_value[16-1:0];
 assign card1_card_core1_regs_fifo2_reg_word100_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:16] == 0);
-assign card1_card_core1_regs_fifo2_reg_word100_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word100_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -4855,7 +4854,7 @@ assign card1_card_core1_regs_fifo2_reg_word101_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_merged = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word101_merged = card1_card_core1_regs_fifo2_written_data[24-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_reg_word101_zero_above, card1_card_core1_regs_fifo2_reg_word101_sign, card1_card_core1_regs_fifo2_reg_word101_ones_above, card1_card_core1_regs_fifo2_reg_word101_merged) begin: card1_card_core1_regs_fifo2_reg_word101__limit44_clamp_signed
@@ -4875,9 +4874,9 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word101_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
-assign card1_card_core1_regs_fifo2_reg_word101_ones_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 255);
-assign card1_card_core1_regs_fifo2_reg_word101_sign = (card1_card_core1_regs_fifo2_written_data[31] && card1_card_core1_regs_fifo2_written_mask[31]);
+assign card1_card_core1_regs_fifo2_reg_word101_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:24] == 0);
+assign card1_card_core1_regs_fifo2_reg_word101_ones_above = (card1_card_core1_regs_fifo2_written_data[32-1:24] == 255);
+assign card1_card_core1_regs_fifo2_reg_word101_sign = card1_card_core1_regs_fifo2_written_data[31];
 
 
 
@@ -4925,7 +4924,7 @@ assign card1_card_core1_regs_fifo2_reg_word102_mine_write = ((card1_card_core1_r
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_merged = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word102_merged = card1_card_core1_regs_fifo2_written_data[24-1:0];
 
 
 always @(card1_card_core1_regs_fifo2_reg_word102_zero_above, card1_card_core1_regs_fifo2_reg_word102_sign, card1_card_core1_regs_fifo2_reg_word102_ones_above, card1_card_core1_regs_fifo2_reg_word102_merged) begin: card1_card_core1_regs_fifo2_reg_word102__limit45_clamp_signed
@@ -4945,9 +4944,9 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word102_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
-assign card1_card_core1_regs_fifo2_reg_word102_ones_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 255);
-assign card1_card_core1_regs_fifo2_reg_word102_sign = (card1_card_core1_regs_fifo2_written_data[31] && card1_card_core1_regs_fifo2_written_mask[31]);
+assign card1_card_core1_regs_fifo2_reg_word102_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:24] == 0);
+assign card1_card_core1_regs_fifo2_reg_word102_ones_above = (card1_card_core1_regs_fifo2_written_data[32-1:24] == 255);
+assign card1_card_core1_regs_fifo2_reg_word102_sign = card1_card_core1_regs_fifo2_written_data[31];
 
 
 
@@ -5061,7 +5060,7 @@ assign card1_card_core1_regs_fifo2_reg_word106_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word106_merged = ((card1_card_core1_regs_fifo2_machine_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word106_merged = ((card1_card_core1_regs_fifo2_machine_control & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | card1_card_core1_regs_fifo2_written_data[2-1:0]);
 
 
 
@@ -5157,7 +5156,7 @@ assign card1_card_core1_regs_fifo2_reg_word109_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word109_merged = ((card1_card_core1_regs_fifo2_reg_word109_shown & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word109_merged = ((card1_card_core1_regs_fifo2_reg_word109_shown & (~card1_card_core1_regs_fifo2_written_mask[7-1:0])) | card1_card_core1_regs_fifo2_written_data[7-1:0]);
 
 
 
@@ -5206,7 +5205,7 @@ assign card1_card_core1_regs_fifo2_reg_word110_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_merged = ((card1_card_core1_regs_fifo2_reg_word110_shown & (~card1_card_core1_regs_fifo2_written_mask[4-1:0])) | (card1_card_core1_regs_fifo2_written_data[4-1:0] & card1_card_core1_regs_fifo2_written_mask[4-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word110_merged = ((card1_card_core1_regs_fifo2_reg_word110_shown & (~card1_card_core1_regs_fifo2_written_mask[4-1:0])) | card1_card_core1_regs_fifo2_written_data[4-1:0]);
 
 
 
@@ -5233,7 +5232,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word110_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:4] & card1_card_core1_regs_fifo2_written_mask[32-1:4]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word110_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:4] == 0);
 
 
 
@@ -5278,7 +5277,7 @@ assign card1_card_core1_regs_fifo2_reg_word111_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word111_merged = ((card1_card_core1_regs_fifo2_reg_word111_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word111_merged = ((card1_card_core1_regs_fifo2_reg_word111_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -5305,7 +5304,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word111_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word111_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -5350,7 +5349,7 @@ assign card1_card_core1_regs_fifo2_reg_word112_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_merged = (card1_card_core1_regs_fifo2_written_data[24-1:0] & card1_card_core1_regs_fifo2_written_mask[24-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word112_merged = card1_card_core1_regs_fifo2_written_data[24-1:0];
 
 
 
@@ -5373,7 +5372,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word112_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:24] & card1_card_core1_regs_fifo2_written_mask[32-1:24]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word112_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:24] == 0);
 
 
 
@@ -5421,7 +5420,7 @@ assign card1_card_core1_regs_fifo2_reg_word113_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word113_merged = (card1_card_core1_regs_fifo2_written_data[7-1:0] & card1_card_core1_regs_fifo2_written_mask[7-1:0]);
+assign card1_card_core1_regs_fifo2_reg_word113_merged = card1_card_core1_regs_fifo2_written_data[7-1:0];
 
 
 
@@ -5495,7 +5494,7 @@ assign card1_card_core1_regs_fifo2_reg_word115_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word115_merged = ((card1_card_core1_regs_fifo2_reg_word115_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word115_merged = ((card1_card_core1_regs_fifo2_reg_word115_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -5522,7 +5521,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word115_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word115_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -5567,7 +5566,7 @@ assign card1_card_core1_regs_fifo2_reg_word116_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_merged = ((card1_card_core1_regs_fifo2_reg_word116_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word116_merged = ((card1_card_core1_regs_fifo2_reg_word116_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -5594,7 +5593,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word116_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word116_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -5639,7 +5638,7 @@ assign card1_card_core1_regs_fifo2_reg_word117_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word117_merged = ((card1_card_core1_regs_fifo2_reg_word117_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | (card1_card_core1_regs_fifo2_written_data[16-1:0] & card1_card_core1_regs_fifo2_written_mask[16-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word117_merged = ((card1_card_core1_regs_fifo2_reg_word117_shown & (~card1_card_core1_regs_fifo2_written_mask[16-1:0])) | card1_card_core1_regs_fifo2_written_data[16-1:0]);
 
 
 
@@ -5662,7 +5661,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word117_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:16] & card1_card_core1_regs_fifo2_written_mask[32-1:16]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word117_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:16] == 0);
 
 
 
@@ -5707,7 +5706,7 @@ assign card1_card_core1_regs_fifo2_reg_word118_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word118_merged = ((card1_card_core1_regs_fifo2_reg_word118_shown & (~card1_card_core1_regs_fifo2_written_mask[23-1:0])) | (card1_card_core1_regs_fifo2_written_data[23-1:0] & card1_card_core1_regs_fifo2_written_mask[23-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word118_merged = ((card1_card_core1_regs_fifo2_reg_word118_shown & (~card1_card_core1_regs_fifo2_written_mask[23-1:0])) | card1_card_core1_regs_fifo2_written_data[23-1:0]);
 
 
 
@@ -5734,7 +5733,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word118_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:23] & card1_card_core1_regs_fifo2_written_mask[32-1:23]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word118_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:23] == 0);
 
 
 
@@ -5779,7 +5778,7 @@ assign card1_card_core1_regs_fifo2_reg_word119_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word119_merged = ((card1_card_core1_regs_fifo2_reg_word119_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | (card1_card_core1_regs_fifo2_written_data[8-1:0] & card1_card_core1_regs_fifo2_written_mask[8-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word119_merged = ((card1_card_core1_regs_fifo2_reg_word119_shown & (~card1_card_core1_regs_fifo2_written_mask[8-1:0])) | card1_card_core1_regs_fifo2_written_data[8-1:0]);
 
 
 
@@ -5799,7 +5798,7 @@ end
 
 assign card1_card_core1_regs_fifo2_reg_word119_set_low = card1_card_core1_regs_fifo2_set_value[8-1:0];
 assign card1_card_core1_regs_fifo2_reg_word119_set_zero = (card1_card_core1_regs_fifo2_set_value[32-1:8] == 0);
-assign card1_card_core1_regs_fifo2_reg_word119_bus_zero = ((card1_card_core1_regs_fifo2_written_data[32-1:8] & card1_card_core1_regs_fifo2_written_mask[32-1:8]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word119_bus_zero = (card1_card_core1_regs_fifo2_written_data[32-1:8] == 0);
 
 
 
@@ -5888,7 +5887,7 @@ assign card1_card_core1_regs_fifo2_reg_word120_mine_write = (card1_card_core1_re
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word120_merged = ((card1_card_core1_regs_fifo2_step_mode & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | (card1_card_core1_regs_fifo2_written_data[2-1:0] & card1_card_core1_regs_fifo2_written_mask[2-1:0]));
+assign card1_card_core1_regs_fifo2_reg_word120_merged = ((card1_card_core1_regs_fifo2_step_mode & (~card1_card_core1_regs_fifo2_written_mask[2-1:0])) | card1_card_core1_regs_fifo2_written_data[2-1:0]);
 
 
 
@@ -5915,7 +5914,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_reg_word120_zero_above = ((card1_card_core1_regs_fifo2_written_data[32-1:2] & card1_card_core1_regs_fifo2_written_mask[32-1:2]) == 0);
+assign card1_card_core1_regs_fifo2_reg_word120_zero_above = (card1_card_core1_regs_fifo2_written_data[32-1:2] == 0);
 
 
 
@@ -6861,22 +6860,16 @@ assign card1_card_core1_regs_fifo2_motion_run = (card1_card_core1_regs_fifo2_seq
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_rate2_register_settings
     if (reset == 0) begin
+        card1_card_core1_regs_fifo2_feed_rate2_start_s <= 0;
+        card1_card_core1_regs_fifo2_feed_rate2_step_s <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_target_s <= 0;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= 1;
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_step_s <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_start_s <= 0;
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= 0;
     end
     else begin
         card1_card_core1_regs_fifo2_feed_rate2_target_s <= card1_card_core1_regs_fifo2_reg_word92_shown;
         card1_card_core1_regs_fifo2_feed_rate2_start_s <= card1_card_core1_regs_fifo2_reg_word93_shown;
         card1_card_core1_regs_fifo2_feed_rate2_step_s <= card1_card_core1_regs_fifo2_ramp_step;
         card1_card_core1_regs_fifo2_feed_rate2_step_zero <= (card1_card_core1_regs_fifo2_ramp_step == 0);
-        card1_card_core1_regs_fifo2_feed_rate2_raise_limit <= ($signed({1'b0, card1_card_core1_regs_fifo2_reg_word92_shown}) - $signed({1'b0, card1_card_core1_regs_fifo2_ramp_step}));
-        card1_card_core1_regs_fifo2_feed_rate2_lower_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word92_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
-        card1_card_core1_regs_fifo2_feed_rate2_floor_limit <= ({1'b0, card1_card_core1_regs_fifo2_reg_word93_shown} + {1'b0, card1_card_core1_regs_fifo2_ramp_step});
     end
 end
 
@@ -6893,26 +6886,32 @@ end
 
 
 assign card1_card_core1_regs_fifo2_feed_rate2_total = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_phase} + {1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate});
-assign card1_card_core1_regs_fifo2_feed_rate2_raised = (card1_card_core1_regs_fifo2_feed_rate2_rate + card1_card_core1_regs_fifo2_feed_rate2_step_s);
-assign card1_card_core1_regs_fifo2_feed_rate2_lowered = (card1_card_core1_regs_fifo2_feed_rate2_rate - card1_card_core1_regs_fifo2_feed_rate2_step_s);
-assign card1_card_core1_regs_fifo2_feed_rate2_can_raise = ($signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate}) <= card1_card_core1_regs_fifo2_feed_rate2_raise_limit);
-assign card1_card_core1_regs_fifo2_feed_rate2_can_lower = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= card1_card_core1_regs_fifo2_feed_rate2_lower_limit);
-assign card1_card_core1_regs_fifo2_feed_rate2_above_floor = ({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate} >= card1_card_core1_regs_fifo2_feed_rate2_floor_limit);
+assign card1_card_core1_regs_fifo2_feed_rate2_raised_full = (card1_card_core1_regs_fifo2_feed_rate2_rate + card1_card_core1_regs_fifo2_feed_rate2_step_s);
+assign card1_card_core1_regs_fifo2_feed_rate2_lowered_full = ($signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_rate}) - $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_step_s}));
 assign card1_card_core1_regs_fifo2_feed_rate2_below = (card1_card_core1_regs_fifo2_feed_rate2_rate < card1_card_core1_regs_fifo2_feed_rate2_target_s);
 assign card1_card_core1_regs_fifo2_feed_rate2_above = (card1_card_core1_regs_fifo2_feed_rate2_rate > card1_card_core1_regs_fifo2_feed_rate2_target_s);
 assign card1_card_core1_regs_fifo2_feed_rate2_count_empty = (card1_card_core1_regs_fifo2_feed_rate2_count == 2);
 assign card1_card_core1_regs_fifo2_feed_rate2_count_last = (card1_card_core1_regs_fifo2_feed_rate2_count == (2 + 1));
 
 
-always @(card1_card_core1_regs_fifo2_feed_rate2_count_empty, card1_card_core1_regs_fifo2_feed_rate2_count) begin: card1_card_core1_regs_fifo2_feed_rate2_count_steps
-    card1_card_core1_regs_fifo2_feed_rate2_count_up = (card1_card_core1_regs_fifo2_feed_rate2_count + 1);
-    if (card1_card_core1_regs_fifo2_feed_rate2_count_empty) begin
-        card1_card_core1_regs_fifo2_feed_rate2_count_down = card1_card_core1_regs_fifo2_feed_rate2_count;
-    end
-    else begin
-        card1_card_core1_regs_fifo2_feed_rate2_count_down = (card1_card_core1_regs_fifo2_feed_rate2_count - 1);
+
+assign card1_card_core1_regs_fifo2_feed_rate2_raised = card1_card_core1_regs_fifo2_feed_rate2_raised_full[16-1:0];
+assign card1_card_core1_regs_fifo2_feed_rate2_lowered = card1_card_core1_regs_fifo2_feed_rate2_lowered_full[16-1:0];
+assign card1_card_core1_regs_fifo2_feed_rate2_can_raise = (card1_card_core1_regs_fifo2_feed_rate2_raised_full <= {1'b0, card1_card_core1_regs_fifo2_feed_rate2_target_s});
+assign card1_card_core1_regs_fifo2_feed_rate2_can_lower = (card1_card_core1_regs_fifo2_feed_rate2_lowered_full >= $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_target_s}));
+assign card1_card_core1_regs_fifo2_feed_rate2_above_floor = (card1_card_core1_regs_fifo2_feed_rate2_lowered_full >= $signed({1'b0, card1_card_core1_regs_fifo2_feed_rate2_start_s}));
+
+
+always @(card1_card_core1_regs_fifo2_feed_rate2_below, card1_card_core1_regs_fifo2_feed_pause, card1_card_core1_regs_fifo2_feed_rate2_decelerate) begin: card1_card_core1_regs_fifo2_feed_rate2_count_direction
+    card1_card_core1_regs_fifo2_feed_rate2_count_addend = ((1 << 16) - 1);
+    if ((card1_card_core1_regs_fifo2_feed_rate2_below && (!(card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)))) begin
+        card1_card_core1_regs_fifo2_feed_rate2_count_addend = 1;
     end
 end
+
+
+
+assign card1_card_core1_regs_fifo2_feed_rate2_count_moved = (card1_card_core1_regs_fifo2_feed_rate2_count + card1_card_core1_regs_fifo2_feed_rate2_count_addend);
 
 
 
@@ -6953,14 +6952,14 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_feed_r
             end
             else if ((card1_card_core1_regs_fifo2_feed_rate2_decelerate || card1_card_core1_regs_fifo2_feed_pause)) begin
                 if ((!card1_card_core1_regs_fifo2_feed_rate2_count_empty)) begin
-                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+                    card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_moved;
                 end
             end
             else if (card1_card_core1_regs_fifo2_feed_rate2_below) begin
-                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_up;
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_moved;
             end
-            else if (card1_card_core1_regs_fifo2_feed_rate2_above) begin
-                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_down;
+            else if ((card1_card_core1_regs_fifo2_feed_rate2_above && (!card1_card_core1_regs_fifo2_feed_rate2_count_empty))) begin
+                card1_card_core1_regs_fifo2_feed_rate2_count <= card1_card_core1_regs_fifo2_feed_rate2_count_moved;
             end
         end
     end
@@ -7580,16 +7579,16 @@ end
 
 
 assign card1_card_core1_regs_fifo2_input_filter2_level = (card1_card_core1_regs_fifo2_input_filter2_inputs_raw ^ card1_card_core1_regs_fifo2_reg_word109_shown);
-assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 0);
+assign card1_card_core1_regs_fifo2_input_filter2_sample = (card1_card_core1_regs_fifo2_input_filter2_prescale == 1);
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_input_filter2_prescaler
     if (reset == 0) begin
-        card1_card_core1_regs_fifo2_input_filter2_prescale <= 0;
+        card1_card_core1_regs_fifo2_input_filter2_prescale <= 1;
     end
     else begin
         if (card1_card_core1_regs_fifo2_input_filter2_sample) begin
-            card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_reg_word111_shown - 1);
+            card1_card_core1_regs_fifo2_input_filter2_prescale <= card1_card_core1_regs_fifo2_reg_word111_shown;
         end
         else begin
             card1_card_core1_regs_fifo2_input_filter2_prescale <= (card1_card_core1_regs_fifo2_input_filter2_prescale - 1);
@@ -8168,8 +8167,8 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
     else begin
         card1_card_core1_regs_fifo2_io_written <= card1_card_core1_regs_fifo2_io_write;
         card1_card_core1_regs_fifo2_written_addr <= card1_pci_slave2_pci_requests2_local_addr;
-        card1_card_core1_regs_fifo2_written_data <= card1_pci_slave2_pci_requests2_local_wdata;
-        card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask;
+        card1_card_core1_regs_fifo2_written_data <= (card1_pci_slave2_pci_requests2_local_wdata & card1_card_core1_regs_fifo2_byte_mask);
+        card1_card_core1_regs_fifo2_written_mask <= card1_card_core1_regs_fifo2_byte_mask[23-1:0];
     end
 end
 
@@ -8209,7 +8208,7 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_regs_fifo2_soft_reset_taken || card1_card_core1_regs_fifo2_releasing || (card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_written_data[1] && card1_card_core1_regs_fifo2_written_mask[1]));
+assign card1_card_core1_regs_fifo2_fifo_flush = (card1_card_core1_regs_fifo2_soft_reset_taken || card1_card_core1_regs_fifo2_releasing || (card1_card_core1_regs_fifo2_io_written && (card1_card_core1_regs_fifo2_written_addr == 8) && card1_card_core1_regs_fifo2_discard_on_clear && card1_card_core1_regs_fifo2_written_data[1]));
 
 
 always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_outputs_before

@@ -102,7 +102,9 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     io_written = Signal(bool(0))
     written_addr = Signal(intbv(0)[len(local.addr):])
     written_data = Signal(intbv(0)[32:])
-    written_mask = Signal(intbv(0)[32:])
+    # the byte enables as a mask, as far as a register merges bytes with its own (the RW registers)
+    merged_width = max(spec.width for spec in specs if spec.access == "RW")
+    written_mask = Signal(intbv(0)[merged_width:])
     fifo_dout = Signal(intbv(0)[32:])
     fifo_pop, fifo_empty, fifo_full = Signal(bool(0)), Signal(bool(1)), Signal(bool(0))
     fifo_level = Signal(intbv(0, min=0, max=fifo_depth + 1))
@@ -115,8 +117,8 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     hw = {name: word.hw for name, word in words.items()}
     strobes = {name: word.strobe for name, word in words.items()}
     chain = [ReadChain() for _ in range(len(specs) + 1)]
-    register_bus = RegisterBus(len(local.addr), addr=local.addr, write_addr=written_addr, write=io_written,
-                               byte_mask=written_mask, wdata=written_data)
+    register_bus = RegisterBus(len(local.addr), merged_width, addr=local.addr, write_addr=written_addr,
+                               write=io_written, byte_mask=written_mask, wdata=written_data)
     # X's and Y's per-axis blocks in BAR2: their BAR0 registers answer there too, each block tested once
     blocks = {}
     aliases = {}
@@ -261,8 +263,10 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         # merge and clamp logic in the same clock
         io_written.next = io_write
         written_addr.next = local.addr
-        written_data.next = local.wdata
-        written_mask.next = byte_mask
+        # masked here, where the flip-flops' logic cells have room for it: the registers'
+        # merges and range checks then read the bytes without their enables
+        written_data.next = local.wdata & byte_mask
+        written_mask.next = byte_mask[merged_width:]
 
     @always_comb
     def control_bits():
@@ -312,8 +316,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         # a command in two, and words written since are dropped with it; one the
         # guard refuses (the E-stop input active) changes nothing
         fifo_flush.next = soft_reset_taken or releasing or (
-            io_written and written_addr == command_offset and discard_on_clear and written_data[clear_bit]
-            and written_mask[clear_bit])
+            io_written and written_addr == command_offset and discard_on_clear and written_data[clear_bit])
 
     level_pad = level_bits - len(fifo_level)
 

@@ -183,11 +183,14 @@ class RegisterBus:
     ``addr`` (byte offset of reads, straight from the local bus),
     ``write_addr`` (byte offset of the write), ``write`` (an I/O write
     happens at this clock edge), ``byte_mask`` (the write's byte enables as
-    a bit mask) and ``wdata``; every ``reg_word`` reads them."""
+    a bit mask, at least as wide as the registers that merge bytes) and
+    ``wdata`` (the write's data, its bytes not enabled 0: masked before the
+    write stage's flip-flops, so no register masks it again); every
+    ``reg_word`` reads them."""
 
-    def __init__(self, addr_width=16, **given):
+    def __init__(self, addr_width=16, mask_width=32, **given):
         adopt(self, given, addr=Signal(intbv(0)[addr_width:]), write_addr=Signal(intbv(0)[addr_width:]),
-               write=Signal(bool(0)), byte_mask=Signal(intbv(0)[32:]), wdata=Signal(intbv(0)[32:]))
+               write=Signal(bool(0)), byte_mask=Signal(intbv(0)[mask_width:]), wdata=Signal(intbv(0)[32:]))
 
 
 class AliasBlock:

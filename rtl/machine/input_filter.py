@@ -36,7 +36,9 @@ def input_filter(clock, reset, inputs):
     sync = Signal(intbv(0)[count:])
     count_bits = len(inputs.samples)
     counts = [Signal(intbv(0)[count_bits:]) for _ in range(count)]
-    prescale = Signal(intbv(0)[len(inputs.tick):])
+    # clocks to the next sample, 1 in its clock: reloaded with ``tick`` itself (>= 1), so no
+    # second decrementer makes ``tick - 1``; 1 after reset, the first clock's sample
+    prescale = Signal(intbv(1)[len(inputs.tick):])
     sample = Signal(bool(0))
     level = Signal(intbv(0)[count:])
     taken_bits = [Signal(bool(0)) for _ in range(count)]  # the new level counts with this sample
@@ -50,12 +52,12 @@ def input_filter(clock, reset, inputs):
     @always_comb
     def polarise():
         level.next = inputs.raw ^ inputs.polarity
-        sample.next = prescale == 0
+        sample.next = prescale == 1
 
     @always_seq(clock.posedge, reset=reset)
     def prescaler():
         if sample:
-            prescale.next = inputs.tick - 1
+            prescale.next = inputs.tick
         else:
             prescale.next = prescale - 1
 

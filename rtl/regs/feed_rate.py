@@ -55,13 +55,15 @@ def feed_rate(clock, reset, settings, feed):
     high across chained segments, so the ramp does not restart between them.
 
     Every decision uses registers only: ``target``, ``ramp_start`` and
-    ``ramp_step`` are taken one clock late together with their sums (the
-    limits), so between two registers there is one adder or comparator and a
-    multiplexer.  A settings change reaches the ramp one clock later.
+    ``ramp_step`` are taken one clock late, and the limits of rules 2-4 are
+    compared on the candidates themselves (``rate`` +- ``ramp_step`` against
+    ``target`` or ``ramp_start``), so no sum of the settings is kept in
+    flip-flops.  A settings change reaches the ramp one clock later.
 
-    Processes, by what they drive: ``register_settings`` (the settings and
-    their sums), ``end_ahead`` (``decelerate``), ``candidates`` and
-    ``count_steps`` (the next rates, counts and their conditions), ``gate``
+    Processes, by what they drive: ``register_settings`` (the settings),
+    ``end_ahead`` (``decelerate``), ``candidates``, ``limits``,
+    ``count_direction`` and ``count_steps`` (the next rates, counts and
+    their conditions), ``gate``
     (``advancing``), ``accumulate`` (the phase, ``tick``), ``ramp_count``
     (the ramp count), ``ramp_rate`` (the rate, ``held``).
 
@@ -81,7 +83,8 @@ def feed_rate(clock, reset, settings, feed):
     phase = Signal(intbv(0)[PHASE_BITS:])
     total = Signal(intbv(0)[PHASE_BITS + 1:])
     count = Signal(intbv(DECEL_MARGIN, min=0, max=1 << COUNT_BITS))  # ramp ticks + DECEL_MARGIN
-    count_up, count_down = (Signal(intbv(0, min=0, max=1 << COUNT_BITS)) for _ in range(2))
+    # the count one up (rule 3) or one down (rules 2 and 4), from one adder
+    count_addend, count_moved = Signal(modbv(0)[COUNT_BITS:]), Signal(modbv(0)[COUNT_BITS:])
     count_empty, count_last = Signal(bool(1)), Signal(bool(0))
     decelerate = Signal(bool(0))
     advancing = Signal(bool(0))  # the phase moves on in this clock: running, not held, outputs not full
@@ -89,10 +92,10 @@ def feed_rate(clock, reset, settings, feed):
     target_s, start_s = (Signal(intbv(0, min=0, max=RATE_MAX + 1)) for _ in range(2))
     step_s = Signal(intbv(0)[step_bits:])
     step_zero = Signal(bool(1))
-    raise_limit = Signal(intbv(0, min=-(1 << step_bits), max=RATE_MAX + 1))  # target - step
-    lower_limit = Signal(intbv(0)[step_bits + 1:])  # target + step
-    floor_limit = Signal(intbv(0)[step_bits + 1:])  # ramp_start + step
-    # candidates, from the registers; taken only when in range, so they may wrap
+    # candidates, from the registers, in full (rate + step, rate - step) for the limits' compares;
+    # their low bits (``raised``, ``lowered``) are taken only when in range
+    raised_full = Signal(intbv(0)[max(RATE_BITS, step_bits) + 1:])
+    lowered_full = Signal(intbv(0, min=-(1 << step_bits), max=RATE_MAX + 1))
     raised, lowered = Signal(modbv(0)[RATE_BITS:]), Signal(modbv(0)[RATE_BITS:])
     can_raise, can_lower, above_floor, below, above = (Signal(bool(0)) for _ in range(5))
     left_pad = len(feed.stop_left) - COUNT_BITS
@@ -105,9 +108,6 @@ def feed_rate(clock, reset, settings, feed):
         start_s.next = settings.ramp_start
         step_s.next = settings.ramp_step
         step_zero.next = settings.ramp_step == 0
-        raise_limit.next = concat(False, settings.target).signed() - concat(False, settings.ramp_step).signed()
-        lower_limit.next = concat(False, settings.target) + concat(False, settings.ramp_step)
-        floor_limit.next = concat(False, settings.ramp_start) + concat(False, settings.ramp_step)
 
     @always_seq(clock.posedge, reset=reset)
     def end_ahead():
@@ -116,23 +116,32 @@ def feed_rate(clock, reset, settings, feed):
     @always_comb
     def candidates():
         total.next = concat(False, phase) + concat(False, rate)
-        raised.next = rate + step_s
-        lowered.next = rate - step_s
-        can_raise.next = concat(False, rate).signed() <= raise_limit
-        can_lower.next = concat(False, rate) >= lower_limit
-        above_floor.next = concat(False, rate) >= floor_limit
+        raised_full.next = rate + step_s
+        lowered_full.next = concat(False, rate).signed() - concat(False, step_s).signed()
         below.next = rate < target_s
         above.next = rate > target_s
         count_empty.next = count == DECEL_MARGIN
         count_last.next = count == DECEL_MARGIN + 1
 
     @always_comb
+    def limits():
+        # rate + step <= target; rate - step >= target; rate - step >= ramp_start
+        raised.next = raised_full[RATE_BITS:]
+        lowered.next = lowered_full[RATE_BITS:]
+        can_raise.next = raised_full <= concat(False, target_s)
+        can_lower.next = lowered_full >= concat(False, target_s).signed()
+        above_floor.next = lowered_full >= concat(False, start_s).signed()
+
+    @always_comb
+    def count_direction():
+        # up only where rule 3 raises the rate; where the count goes down, ramp_count keeps a count of 0
+        count_addend.next = (1 << COUNT_BITS) - 1
+        if below and not (decelerate or feed.pause):
+            count_addend.next = 1
+
+    @always_comb
     def count_steps():
-        count_up.next = count + 1
-        if count_empty:
-            count_down.next = count
-        else:
-            count_down.next = count - 1
+        count_moved.next = count + count_addend
 
     @always_comb
     def gate():
@@ -159,11 +168,11 @@ def feed_rate(clock, reset, settings, feed):
                 count.next = DECEL_MARGIN
             elif decelerate or feed.pause:
                 if not count_empty:
-                    count.next = count_down
+                    count.next = count_moved
             elif below:
-                count.next = count_up
-            elif above:
-                count.next = count_down
+                count.next = count_moved
+            elif above and not count_empty:
+                count.next = count_moved
 
     @always_seq(clock.posedge, reset=reset)
     def ramp_rate():
@@ -209,7 +218,7 @@ def feed_rate(clock, reset, settings, feed):
                 else:
                     rate.next = target_s
 
-    return register_settings, end_ahead, candidates, count_steps, gate, accumulate, ramp_count, ramp_rate
+    return register_settings, end_ahead, candidates, limits, count_direction, count_steps, gate, accumulate, ramp_count, ramp_rate
 
 
 def feed_rate_ports(coord_width=COORD_WIDTH.default):

@@ -116,15 +116,15 @@ def reg_word(clock, reset, bus, set_port, word, chain_in, chain_out, *, alias=No
     def set_parts():
         set_low.next = set_port.value[width:]
         set_zero.next = set_port.value[32:width] == 0
-        bus_zero.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
+        bus_zero.next = bus.wdata[32:width] == 0
 
     @always_comb
     def merge_bytes():
-        merged.next = (word.value & ~bus.byte_mask[width:]) | (bus.wdata[width:] & bus.byte_mask[width:])
+        merged.next = (word.value & ~bus.byte_mask[width:]) | bus.wdata[width:]
 
     @always_comb
     def mask_bytes():
-        written.next = bus.wdata[width:] & bus.byte_mask[width:]
+        written.next = bus.wdata[width:]
 
     if spec.access != "RW":
         merge = [mask_bytes]
@@ -167,20 +167,20 @@ def zero_extend(narrow, wide):
 
 @block
 def _above(bus, width, signed, zero_above, ones_above, sign):
-    """Of a bus write's 32-bit word (its data under its byte mask), bits ``width``..31:
+    """Of a bus write's 32-bit word (its data, masked by its byte enables), bits ``width``..31:
     ``zero_above`` all 0; when ``signed``, also ``ones_above`` all 1 and ``sign`` bit 31
     (an unsigned range reads neither).  The same for every register of the width: shared."""
     ones = (1 << (32 - width)) - 1
 
     @always_comb
     def unsigned_flags():
-        zero_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
+        zero_above.next = bus.wdata[32:width] == 0
 
     @always_comb
     def signed_flags():
-        zero_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == 0
-        ones_above.next = (bus.wdata[32:width] & bus.byte_mask[32:width]) == ones
-        sign.next = bus.wdata[31] and bus.byte_mask[31]
+        zero_above.next = bus.wdata[32:width] == 0
+        ones_above.next = bus.wdata[32:width] == ones
+        sign.next = bus.wdata[31]
 
     return signed_flags if signed else unsigned_flags
 
