@@ -25,6 +25,9 @@ def _waves_named_after_the_test(request):
 # Cases of parametrised tests left to the slow set, by node id, each with why:
 # the default suite keeps one case of each behaviour on each kind of model.
 SLOW_CASES = {
+    "tests/formal/test_formal.py::test_machine_defect_is_caught[drive_falls_under_a_pulse]": "the machine proofs' "
+        "defect check runs by default with watchdog_cut_to_24_bits; the drive property is proved by default "
+        "(machine_drive)",
     "tests/rtl/test_lint.py::test_verilator_lint_is_clean[generic-": "another build of the units gen/ holds",
     "tests/rtl/test_lint.py::test_verilator_lint_is_clean[ice40-": "another build of the units gen/ holds",
     "tests/rtl/test_lint.py::test_icarus_compiles[generic-": "another build of the units gen/ holds",

@@ -12,6 +12,9 @@ from host.card import Card
 from host.transports.simulated import SimTransport
 from models import registers as regmap
 
+# one worker builds and opens the three-axis card for the module (two would both wait on one build)
+pytestmark = pytest.mark.xdist_group("card_axes")
+
 
 @pytest.fixture(scope="module")
 def transport():
