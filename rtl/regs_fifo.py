@@ -15,6 +15,7 @@ from rtl.machine.input_filter import input_filter
 from rtl.machine.machine_guard import machine_guard
 from rtl.regs.alias_block import alias_block
 from rtl.regs.axis_block import axis_block
+from rtl.regs.axis_request import axis_request
 from rtl.regs.direct_pulse import direct_pulse
 from rtl.regs.encoder_block import encoder_block, realign_on
 from rtl.regs.feed_rate import feed_rate
@@ -362,7 +363,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         units.append(pulse_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"], halt,
                                   values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))
         if axis >= 2:   # X's and Y's: merge_requests
-            units.append(_axis_request(steps.step(axis), steps.dir(axis), direct_out[axis], requests.step(axis),
+            units.append(axis_request(steps.step(axis), steps.dir(axis), direct_out[axis], requests.step(axis),
                                        requests.dir(axis)))
     status = StatusWords(axes, busy=any_busy, quadrant=dda.quadrant, error_code=error_code, fifo_empty=fifo_empty,
                          fifo_full=fifo_full, fifo_level=level_wide, clamped=clamp_end, home_ended=home.ended,
@@ -374,19 +375,6 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
                          pos_y=hw["POS_Y"], input_raw=hw["INPUT_RAW"], input_active=hw["INPUT_ACTIVE"], irq=irq)
     units.append(status_words(clock, reset, words=status, guard=guard, conditioning=conditioning, mark=mark))
     return units
-
-
-@block
-def _axis_request(step, direction, out, request, request_dir):
-    """Axis Z, A, ...: the interpolator's step (``step``, ``direction``) or else
-    the axis's direct pulse (``out``), as ``merge_requests`` does for X and Y."""
-
-    @always_comb
-    def merge():
-        request.next = step or out.step
-        request_dir.next = direction if step else out.dir
-
-    return merge
 
 
 def regs_fifo_ports(coord_width=Build.coord_width, variants=Build.variants, axes=Build.axes,
