@@ -1303,7 +1303,7 @@ reg [26:0] card_core0_dda_axes0_dda_arc1_dda_run1_dda_nearest1_error_term;
 reg [31:0] card_core0_regs_fifo1_sync_fifo1_storage [0:512-1];
 reg [3:0] card_core0_regs_fifo1_pulse_out1_queue [0:4-1];
 
-assign card_core0_regs_fifo1_reg_word41_shown = 32'd3719037444;
+assign card_core0_regs_fifo1_reg_word41_shown = 32'd3719037696;
 assign card_core0_regs_fifo1_reg_word41_chain_in_data = 32'd0;
 assign card_core0_regs_fifo1_reg_word41_chain_in_clamped = 1'd0;
 assign card_core0_regs_fifo1_reg_word42_out_of_range = 1'd0;
@@ -5215,7 +5215,7 @@ always @(card_core0_regs_fifo1_fifo_dout[32-1:28]) begin: card_core0_regs_fifo1_
     case (card_core0_regs_fifo1_fifo_dout[32-1:28])
         0: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
         1: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
-        2: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 1;
+        2: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 2;
         3: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
         4: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;
         5: card_core0_regs_fifo1_sequencer1_command_header1_lead_count = 0;

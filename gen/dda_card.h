@@ -6,7 +6,7 @@
 #define DDA_IO_BAR_SIZE 256u
 
 #define DDA_ID 0x00u
-#define DDA_ID_RESET 0xDDAC0204u
+#define DDA_ID_RESET 0xDDAC0300u
 #define DDA_ID_VERSION_SHIFT 0u
 #define DDA_ID_VERSION_MASK 0x0000FFFFu
 #define DDA_ID_MAGIC_SHIFT 16u
@@ -627,7 +627,7 @@
 #define DDA_AXIS_B 4u
 #define DDA_AXIS_C 5u
 #define DDA_OPCODE_SHIFT 28u
-#define DDA_CMD_MAX_WORDS 10u /* the longest command of the N-axis form */
+#define DDA_CMD_MAX_WORDS 11u /* the longest command of the N-axis form */
 #define DDA_CMD_LINE 0x1u
 #define DDA_CMD_LINE_OPERANDS 2u
 #define DDA_CMD_LINE_WORDS 3u
@@ -639,7 +639,7 @@
 #define DDA_CMD_ARC 0x2u
 #define DDA_CMD_ARC_OPERANDS 4u
 #define DDA_CMD_ARC_WORDS 5u
-#define DDA_CMD_ARC_MAX_WORDS 10u
+#define DDA_CMD_ARC_MAX_WORDS 11u
 #define DDA_CMD_ARC_CCW_SHIFT 0u
 #define DDA_CMD_ARC_CCW_MASK 0x00000001u
 #define DDA_CMD_ARC_VARIANT_SHIFT 1u
@@ -701,7 +701,7 @@ static inline unsigned dda_cmd_line(uint32_t words[DDA_CMD_LINE_WORDS],
     return DDA_CMD_LINE_WORDS;
 }
 
-/* ARC: arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps; N-axis form: in the plane (U_AXIS, V_AXIS), XS .. YE its (u, v) coordinates, the HELIX axes moving linearly with the arc's ITERATIONS (docs/axes.md). */
+/* ARC: arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps; N-axis form: in the plane (U_AXIS, V_AXIS), XS .. YE its (u, v) coordinates, the HELIX axes moving linearly with the area the arc sweeps, AREA_HI:AREA_LO its total (docs/axes.md). */
 static inline unsigned dda_cmd_arc(uint32_t words[DDA_CMD_ARC_WORDS],
     int32_t xs,
     int32_t ys,
@@ -790,7 +790,8 @@ static inline unsigned dda_cmd_arc_helix(uint32_t words[DDA_CMD_ARC_MAX_WORDS],
     int32_t ys,
     int32_t xe,
     int32_t ye,
-    uint32_t iterations,
+    uint32_t area_lo,
+    uint32_t area_hi,
     uint32_t helix,
     const int32_t d[DDA_AXES_MAX],
     uint32_t ccw,
@@ -810,7 +811,8 @@ static inline unsigned dda_cmd_arc_helix(uint32_t words[DDA_CMD_ARC_MAX_WORDS],
     words[length++] = (uint32_t)xe;
     words[length++] = (uint32_t)ye;
     if (helix != 0u) {
-        words[length++] = (uint32_t)iterations;
+        words[length++] = (uint32_t)area_lo;
+        words[length++] = (uint32_t)area_hi;
     }
     for (unsigned axis = 0u; axis < DDA_AXES_MAX; axis++)
         if ((helix >> axis) & 1u)

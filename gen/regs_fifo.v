@@ -1027,7 +1027,7 @@ wire status_words0_words_probe_fired;
 reg [31:0] sync_fifo0_storage [0:512-1];
 reg [3:0] pulse_out0_queue [0:4-1];
 
-assign reg_word0_shown = 32'd3719037444;
+assign reg_word0_shown = 32'd3719037696;
 assign reg_word0_chain_in_data = 32'd0;
 assign reg_word0_chain_in_clamped = 1'd0;
 assign reg_word1_out_of_range = 1'd0;
@@ -3718,7 +3718,7 @@ always @(fifo_dout[32-1:28]) begin: sequencer0_command_header0__lookup2_look_up
     case (fifo_dout[32-1:28])
         0: sequencer0_command_header0_lead_count = 0;
         1: sequencer0_command_header0_lead_count = 0;
-        2: sequencer0_command_header0_lead_count = 1;
+        2: sequencer0_command_header0_lead_count = 2;
         3: sequencer0_command_header0_lead_count = 0;
         4: sequencer0_command_header0_lead_count = 0;
         5: sequencer0_command_header0_lead_count = 0;

@@ -1326,7 +1326,7 @@ reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_run2_dda_nearest2_error_term;
 reg [31:0] card1_card_core1_regs_fifo2_sync_fifo2_storage [0:512-1];
 reg [3:0] card1_card_core1_regs_fifo2_pulse_out2_queue [0:4-1];
 
-assign card1_card_core1_regs_fifo2_reg_word82_shown = 32'd3719037444;
+assign card1_card_core1_regs_fifo2_reg_word82_shown = 32'd3719037696;
 assign card1_card_core1_regs_fifo2_reg_word82_chain_in_data = 32'd0;
 assign card1_card_core1_regs_fifo2_reg_word82_chain_in_clamped = 1'd0;
 assign card1_card_core1_regs_fifo2_reg_word83_out_of_range = 1'd0;
@@ -6046,7 +6046,7 @@ always @(card1_card_core1_regs_fifo2_fifo_dout[32-1:28]) begin: card1_card_core1
     case (card1_card_core1_regs_fifo2_fifo_dout[32-1:28])
         0: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
         1: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
-        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 1;
+        2: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 2;
         3: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
         4: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;
         5: card1_card_core1_regs_fifo2_sequencer2_command_header2_lead_count = 0;

@@ -7,10 +7,9 @@ from dataclasses import dataclass
 
 from models import registers as regmap
 
+# the major version this host speaks, every minor of it (3.0 holds every register 2.4 had; a 2.x card
+# takes a helical ARC's operands otherwise, docs/axes.md)
 MAJOR = regmap.VERSION >> 8
-# the oldest minor version this host works with: 2.1 added STEP_SPACE and STEP_MODE, which configure
-# writes; 2.2's per-axis blocks need no check (X's and Y's registers are BAR0's, a card of more axes is 2.2)
-MINOR = 1
 
 
 class IdentityError(RuntimeError):
@@ -44,10 +43,6 @@ def identify(card):
     major, minor = version >> 8, version & 0xFF
     if major != MAJOR:
         raise IdentityError(f"{where}: register map {major}.{minor}; this host software speaks {MAJOR}.x")
-    if minor < MINOR:
-        raise IdentityError(f"{where}: register map {major}.{minor} lacks what {MAJOR}.{MINOR} added "
-                            "(models/registers.py, VERSIONS: STEP_SPACE and STEP_MODE in 2.1): "
-                            "load a newer bitstream")
     build = card.read("BUILD")
     ids = card.transport.config_read(0)
     variants = regmap.field_value("BUILD", "DDA_VARIANTS", build)

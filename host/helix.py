@@ -12,19 +12,23 @@
    their value at the piece's end is the nearest step of the ideal helix at
    the angle the plane has turned there (the last piece ends on ``end``), so
    rounding never accumulates.  An ARC piece that moves a helix axis gets
-   its ITERATIONS (``models.dda_axes.with_iterations``); one whose helix axis
-   would move more steps than the arc has iterations (steeper than about 45
-   degrees in steps: the card steps a helix axis at most once an iteration)
-   becomes lines through the lattice points of the ideal helix, each within
-   the chord tolerance of it; a LINE piece becomes a line through every axis.
+   its AREA W (``models.helix_area.arc_area``: the card moves the helix axes
+   with the area the arc sweeps, so with its angle); one whose helix axis
+   rises more than the card can step, |h| max w > W (``ArcArea.fits``: the
+   card steps a helix axis at most once an iteration, and the arc sweeps
+   at most max w in one; about 0.64 to 0.71 of the arc's iterations on the
+   precise mode), becomes lines through the lattice points of the ideal
+   helix, each within the chord tolerance of it; a LINE piece becomes a
+   line through every axis.
 """
 import math
 from dataclasses import replace
 
 from host.lattice import arc_commands, line_command, line_commands, turn
 from models.axes import XY
-from models.dda_axes import check_move, with_iterations
+from models.dda_axes import check_move
 from models.dda_plan import ArcCommand
+from models.helix_area import arc_area
 
 
 def plane_arc_commands(arc, start, end, machine):
@@ -70,10 +74,12 @@ def _piece_commands(arc, piece, here, target, fractions, machine):
     if isinstance(piece, ArcCommand):
         helix = [0 if axis in arc.plane else d for axis, d in enumerate(deltas)]
         command = replace(piece, plane=arc.plane, helix=tuple(helix) if any(helix) else ())
-        try:
-            return [check_move(with_iterations(command, machine.coord_width), machine.axes, machine.coord_width)]
-        except ValueError:  # a helix axis faster than the arc's iterations: lines along the ideal helix
-            return _helix_chords(arc, here, target, fractions, machine)
+        if any(helix):
+            swept = arc_area(command, machine.coord_width)
+            if not swept.fits(max(map(abs, helix))):   # steeper than the card steps: lines along the ideal helix
+                return _helix_chords(arc, here, target, fractions, machine)
+            command = replace(command, area=swept.total)
+        return [check_move(command, machine.axes, machine.coord_width)]
     return [line_command(deltas)] if any(deltas) else []
 
 

@@ -54,6 +54,11 @@ def _axis_form(name, values, **header):
     return encode(name, *(values[axis] for axis in axes_of(mask)), AXES=mask, **header)
 
 
+def area_words(area):
+    """An ARC's AREA as its two operand words: AREA_LO (bits 31:0), AREA_HI (the bits above)."""
+    return area & 0xFFFFFFFF, area >> 32
+
+
 def _arc_words(command):
     header = dict(CCW=int(command.ccw), VARIANT=command.variant, LAMBDA=command.lambda_shift,
                   ACC_BITS=command.acc_bits, BLEND=int(command.blend))
@@ -62,10 +67,10 @@ def _arc_words(command):
     operands = [command.xs, command.ys, command.xe, command.ye]
     helix = command.helix_axes
     if helix:
-        if command.iterations is None:
-            raise ValueError("a helical ARC needs its ITERATIONS (models.dda_axes.with_iterations)")
+        if command.area is None:
+            raise ValueError("a helical ARC needs its AREA (models.dda_axes.with_area)")
         header["HELIX"] = moving_mask(command.helix)
-        operands += [command.iterations] + [command.helix[axis] for axis in helix]
+        operands += list(area_words(command.area)) + [command.helix[axis] for axis in helix]
     return encode("ARC", *operands, **header)
 
 
@@ -109,12 +114,12 @@ def _decoded(op, fields, operands):
         return AxesLineCommand(_per_axis(fields["AXES"], operands), blend=bool(fields["BLEND"]))
     if op.name == "ARC":
         plane = (fields["U_AXIS"], fields["V_AXIS"]) if fields["U_AXIS"] or fields["V_AXIS"] else XY
-        helix, iterations = (), None
+        helix, area = (), None
         if fields["HELIX"]:
-            iterations, helix = operands[4], _per_axis(fields["HELIX"], operands[5:])
+            area, helix = operands[4] | operands[5] << 32, _per_axis(fields["HELIX"], operands[6:])
         return ArcCommand(*operands[:4], ccw=bool(fields["CCW"]), variant=fields["VARIANT"],
                           lambda_shift=fields["LAMBDA"], acc_bits=fields["ACC_BITS"], blend=bool(fields["BLEND"]),
-                          plane=plane, helix=helix, iterations=iterations)
+                          plane=plane, helix=helix, area=area)
     if op.name == "PULSE":
         return PulseCommand(_per_axis(fields["AXES"] or XY_MASK, operands))
     if op.name == "SET":

@@ -10,17 +10,17 @@
   steps every iteration; all axes end on iteration T).  On X and Y alone it
   steps exactly as the two-axis ``LineIterator``.
 * The helix: the arc runs in its plane with the two-axis arc DDA
-  (``ArcIterator``, every variant, unchanged); the HELIX axes are a
-  ``Follower`` with ``T = ITERATIONS`` (the arc's iteration count K,
-  ``arc_iterations``), stepped in the same iterations as the arc.
+  (``ArcIterator``, every variant, unchanged); the HELIX axes are an
+  ``AreaFollower`` (``models/helix_area.py``) over the arc's AREA W (the
+  area it sweeps, ``arc_area``), stepped in the same iterations as the arc:
+  within half a step of the area swept, within one step of the ideal helix
+  at the same angle.
 * ``MoveIterator``: one iteration of any move (``LineCommand``,
   ``AxesLineCommand``, ``ArcCommand`` with plane and helix) as a step and a
   direction per axis (``AxesStep``); ``iterate_axes`` runs a move to its end.
   A move ends when the arc (if any) and every axis have ended, so a wrong
-  ITERATIONS still ends every axis on its end point (the helix then leads
-  or lags the arc).  ``helix_area=W``: the helix follows the area the arc
-  sweeps instead, AREA ``W`` (``models/helix_area.py``: within one step of
-  the ideal helix at the same angle; the card still takes ITERATIONS).
+  AREA still ends every axis on its end point (the helix then leads or lags
+  the arc).
 
 ``check_move`` holds the card's RANGE rules of the N-axis form
 (``check_pulse`` those of a PULSE's axes); the iterators apply it, and ``plan_arc`` (``models/dda_plan.py``) the arc's own.
@@ -33,9 +33,7 @@ from models.axes import AXIS_NAMES, MAX_AXES, XY, names
 from models.dda_build import ALL_VARIANTS
 from models.dda_model import ArcIterator, iterations_left_bound, run_to_end  # noqa: F401
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand, check_width
-from models.helix_area import AreaFollower, area_increment, area_width
-
-MAX_ITERATIONS = (1 << 32) - 1  # ARC's ITERATIONS operand is an unsigned 32-bit word
+from models.helix_area import AreaFollower, arc_area, area_increment, area_width
 
 
 @dataclass(frozen=True)
@@ -93,17 +91,15 @@ def needed_axes(command):
     return max((reversed_xy,) + tuple(axis + 1 for axis in command.plane + _moving(command.helix)))
 
 
-def check_move(command, axes=MAX_AXES, coord_width=24, helix_area=None):
+def check_move(command, axes=MAX_AXES, coord_width=24):
     """``command`` if a card with ``axes`` axes and ``coord_width``-bit
-    coordinates takes it (the RANGE rules of docs/axes.md); ValueError else.
-    ``helix_area``: the helix follows the swept area, AREA ``helix_area``
-    (1 .. 2^area_width - 1) instead of ITERATIONS."""
+    coordinates takes it (the RANGE rules of docs/axes.md); ValueError else."""
     if isinstance(command, LineCommand):
         deltas = command.deltas
     elif isinstance(command, AxesLineCommand):
         deltas = command.deltas
     elif isinstance(command, ArcCommand):
-        _check_arc_axes(command, axes, coord_width, helix_area)
+        _check_arc_axes(command, axes, coord_width)
         return command
     else:
         raise ValueError(f"not a DDA move: {command!r}")
@@ -129,7 +125,7 @@ def _check_axes(values, axes, what):
         raise ValueError(f"{what}: axis {names(beyond)} is not on a card with {axes} axes ({names(range(axes))})")
 
 
-def _check_arc_axes(command, axes, coord_width, helix_area):
+def _check_arc_axes(command, axes, coord_width):
     u, v = command.plane
     if u == v or not (0 <= u < axes and 0 <= v < axes):
         raise ValueError(f"ARC: plane {command.plane} is not two different axes of the card's {axes}")
@@ -141,39 +137,28 @@ def _check_arc_axes(command, axes, coord_width, helix_area):
         raise ValueError(f"ARC: a helix axis ({names(helix)}) is an axis of the plane ({names((u, v))})")
     for axis in helix:
         check_width(command.helix[axis], coord_width, f"D{AXIS_NAMES[axis]}")
-    if helix and helix_area is not None:
-        largest = (1 << area_width(coord_width)) - 1
-        if not isinstance(helix_area, int) or not 1 <= helix_area <= largest:
-            raise ValueError(f"ARC: a helix by area needs AREA 1..{largest}, not {helix_area!r}")
-    elif helix:
-        if not isinstance(command.iterations, int) or not 1 <= command.iterations <= MAX_ITERATIONS:
-            raise ValueError(f"ARC: a helix needs ITERATIONS 1..{MAX_ITERATIONS}, not {command.iterations!r}")
-        steepest = max(abs(command.helix[axis]) for axis in helix)
-        if steepest > command.iterations:
-            raise ValueError(f"ARC: a helix axis moves {steepest} steps in {command.iterations} iterations "
-                             "(at most one step an iteration)")
+    largest = (1 << area_width(coord_width)) - 1
+    if helix and not (isinstance(command.area, int) and 1 <= command.area <= largest):
+        raise ValueError(f"ARC: a helix needs its AREA, 1..{largest}, not {command.area!r}")
 
 
 class MoveIterator:
     """Iterations of any move on a card with ``axes`` axes (default: as many as it needs)."""
 
-    def __init__(self, command, axes=None, coord_width=24, variants=ALL_VARIANTS, helix_area=None, **options):
+    def __init__(self, command, axes=None, coord_width=24, variants=ALL_VARIANTS, **options):
         self.command = command
         self.axes = needed_axes(command) if axes is None else axes
-        check_move(command, self.axes, coord_width, helix_area)
+        check_move(command, self.axes, coord_width)
         self.arc = None
         self.plane = XY
-        self.by_area = helix_area is not None
         if isinstance(command, ArcCommand):
             self.arc = ArcIterator(command, coord_width, variants=variants, **options)
             self.plane = command.plane
             deltas = _padded(command.helix, self.axes)
-            self.follower = (AreaFollower(deltas, helix_area, coord_width) if self.by_area
-                             else Follower(deltas, command.iterations or 0))
+            self.follower = AreaFollower(deltas, command.area or 0, coord_width)
         else:
-            given = sorted(options) + (["helix_area"] if helix_area is not None else [])
-            if given:
-                raise ValueError(f"options {given} apply to arcs only")
+            if options:
+                raise ValueError(f"options {sorted(options)} apply to arcs only")
             deltas = _padded(command.deltas, self.axes)
             self.follower = Follower(deltas, max(abs(d) for d in deltas))
 
@@ -196,7 +181,7 @@ class MoveIterator:
             swept = area_increment(u_before, v_before, arc_step.step_x, arc_step.step_y)
         if self.follower.finished:
             steps = [False] * self.axes
-        elif self.by_area:
+        elif self.arc is not None:
             steps = list(self.follower.step(swept or 0, arc_step is not None))
         else:
             steps = list(self.follower.step())
@@ -218,7 +203,7 @@ class MoveIterator:
 
 def arc_iterations(command, coord_width=24, variants=ALL_VARIANTS):
     """K: the iterations of ``command``'s arc in its plane (``ArcIterator``, plane and helix aside)."""
-    iterator = ArcIterator(replace(command, helix=(), iterations=None), coord_width, variants=variants)
+    iterator = ArcIterator(replace(command, helix=(), area=None), coord_width, variants=variants)
     count = 0
     while not iterator.finished:
         iterator.step()
@@ -226,11 +211,11 @@ def arc_iterations(command, coord_width=24, variants=ALL_VARIANTS):
     return count
 
 
-def with_iterations(command, coord_width=24, variants=ALL_VARIANTS):
-    """``command`` with its ITERATIONS set to K when it has a helix (as the card needs it)."""
+def with_area(command, coord_width=24, variants=ALL_VARIANTS):
+    """``command`` with its AREA set to W when it has a helix (as the card needs it)."""
     if not command.helix_axes:
         return command
-    return replace(command, iterations=arc_iterations(command, coord_width, variants))
+    return replace(command, area=arc_area(command, coord_width, variants).total)
 
 
 @dataclass
@@ -277,6 +262,6 @@ def move_start(command, axes):
 
 def iterate_axes(command, axes=None, coord_width=24, max_iterations=None, **options):
     """Run ``command`` to its end on a card with ``axes`` axes; its ``AxesPath``
-    (``options``: ``MoveIterator``'s, ``helix_area`` among them)."""
+    (``options``: ``MoveIterator``'s)."""
     iterator = MoveIterator(command, axes, coord_width, **options)
     return run_to_end(iterator, AxesPath(move_start(command, iterator.axes)), max_iterations or 1 << (coord_width + 12))

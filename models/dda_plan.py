@@ -93,8 +93,9 @@ class ArcCommand:
     N axes (docs/axes.md): ``plane`` (u, v) names the axes the arc's x and y
     are (``models/axes.py``: (0, 1) is X, Y); ``helix`` holds a displacement
     per axis (indexed by axis, 0 for the plane's two) that moves linearly
-    with the arc's iterations; ``iterations``, the arc's iteration count K
-    (``models.dda_axes.arc_iterations``), must be given with a helix.
+    with the area the arc sweeps; ``area``, the arc's AREA W
+    (``models.helix_area.arc_area``, ``models.dda_axes.with_area``), must be
+    given with a helix.
     """
     xs: int
     ys: int
@@ -107,7 +108,7 @@ class ArcCommand:
     blend: bool = False
     plane: tuple = XY
     helix: tuple = ()
-    iterations: int = None
+    area: int = None
 
     @property
     def helix_axes(self):

@@ -102,13 +102,13 @@ OPCODES = (
             BLEND_FIELD),
            "arc about the centre from (XS, YS) to (XE, YE), centre-relative signed steps; N-axis form: "
            "in the plane (U_AXIS, V_AXIS), XS .. YE its (u, v) coordinates, the HELIX axes moving linearly "
-           "with the arc's ITERATIONS (docs/axes.md)",
+           "with the area the arc sweeps, AREA_HI:AREA_LO its total (docs/axes.md)",
            (("U_AXIS", 13, AXIS_INDEX_WIDTH, "the plane's first axis u (U_AXIS = V_AXIS = 0: X, Y, the "
              "two-axis form); CCW turns from +u towards +v"),
             ("V_AXIS", 17, AXIS_INDEX_WIDTH, "the plane's second axis v (not u)"),
             ("HELIX", AXIS_MASK_LSB, AXIS_MASK_WIDTH, f"the axes that move linearly with the arc, bit i "
-             f"axis i ({_AXIS_BITS}; not u or v); 0: none, no ITERATIONS")),
-           AxisOperands("HELIX", "D", 0, "arc_helix", lead=("ITERATIONS",), others=2)),
+             f"axis i ({_AXIS_BITS}; not u or v); 0: none, no AREA")),
+           AxisOperands("HELIX", "D", 0, "arc_helix", lead=("AREA_LO", "AREA_HI"), others=2)),
     Opcode("PULSE", 0x3, ("COUNT_X", "COUNT_Y"), (),
            "direct pulses: signed counts per axis at PULSE_PERIOD_X / _Y, both axes at once; N-axis form: "
            "one count per axis in AXES, at that axis's PULSE_PERIOD",
@@ -122,7 +122,7 @@ OPCODES = (
            "set INT_STATUS.MARK and MARK_TAG when reached"),
 )
 
-# operands that are signed steps (the others, SET's VALUE, DWELL's CLOCKS and ARC's ITERATIONS, are unsigned)
+# operands that are signed steps (the others, SET's VALUE, DWELL's CLOCKS and ARC's AREA, are unsigned)
 SIGNED_OPERANDS = (("XS", "YS", "XE", "YE") + tuple(f"D{name}" for name in AXIS_NAMES)
                    + tuple(f"COUNT_{name}" for name in AXIS_NAMES))
 MAX_OPERANDS = max(len(op.operands) for op in OPCODES)  # of the two-axis form

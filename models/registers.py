@@ -74,6 +74,8 @@ VERSIONS = (
     (0x0204, "encoder inputs on a build with encoders (build parameter encoders, BUILD.ENCODERS): per axis "
              "ENC_COUNT .. PROBE_POS in the block, TIMESTAMP and PROBE_CONTROL, INT_STATUS.INDEX and PROBE, "
              "STOP_REASON.REASON FOLLOWING_ERROR and STOP_REASON.AXIS (docs/encoders.md)"),
+    (0x0300, "a helical ARC's axes follow the area the arc sweeps: its operand ITERATIONS becomes AREA_LO, "
+             "AREA_HI (docs/axes.md); the registers are 2.4's"),
 )
 VERSION = VERSIONS[-1][0]
 RATE_ONE = 1 << 16  # feed rate of one iteration per clock

@@ -13,9 +13,7 @@ def dda_linear(clock, reset, line, steps):
     T = max_i |d_i|, every accumulator loaded with T // 2, integrand |d_i|;
     axis i steps in an iteration when acc_i + |d_i| >= T and it has steps
     left (then acc_i -= T).  The major axis steps every iteration, every axis
-    ends on its end point on iteration T.  A helix's other axes follow the
-    same rule with the threshold T = K (``line.helix``: the ARC's
-    ITERATIONS, 32 bits), iterated by the driver in the arc's iterations.
+    ends on its end point on iteration T.
 
     Ports: ``line`` (``LinearPort``: ``load`` takes the magnitudes, signs
     and ``helix``, ``advance`` runs one iteration while ``following``;
@@ -40,9 +38,8 @@ def dda_linear(clock, reset, line, steps):
     if steps.axes != axes:
         raise ValueError(f"dda_linear: line has {axes} axes, steps {steps.axes}")
     width = len(line.left)
-    # the accumulators' side is one bit wider than the threshold (a line's max |d| or a helix's K):
-    # a sum of two values below it
-    thr_width = max(width, len(line.iterations)) + 1
+    # the accumulators' side is one bit wider than the threshold (max |d|): a sum of two values below it
+    thr_width = width + 1
     magnitudes = [line.magnitude(axis) for axis in range(axes)]
     largest = line.largest
     threshold, half = Signal(intbv(0)[thr_width:]), Signal(intbv(0)[thr_width:])
@@ -59,20 +56,13 @@ def dda_linear(clock, reset, line, steps):
         line.following.next = moving_any != 0
         line.busy.next = line.left != 0
         iterate.next = line.advance and moving_any != 0
-        if line.helix:
-            half.next = concat(intbv(0)[thr_width + 1 - len(line.iterations):], line.iterations[len(line.iterations):1])
-        else:
-            half.next = concat(intbv(0)[thr_width + 1 - width:], largest[width:1])
+        half.next = concat(intbv(0)[thr_width + 1 - width:], largest[width:1])
 
     @always_seq(clock.posedge, reset=reset)
     def count_iterations():
         if line.load:
-            if line.helix:
-                threshold.next = concat(intbv(0)[thr_width - len(line.iterations):], line.iterations)
-                line.left.next = 0
-            else:
-                threshold.next = concat(intbv(0)[thr_width - width:], largest)
-                line.left.next = largest
+            threshold.next = concat(intbv(0)[thr_width - width:], largest)
+            line.left.next = largest
         elif iterate and line.left != 0:
             line.left.next = line.left - 1
 

@@ -15,7 +15,8 @@ def dda_run(clock, reset, cmd, move, steps):
         clock, reset  clock and reset (``card_reset()``)
         cmd           ``DdaPort``: ``advance``, ``start`` and ``ready`` in (a taken
                       start clears ``error``); ``done``, ``error``, ``busy``,
-                      ``quadrant``, ``stop_left`` out
+                      ``quadrant``, ``stop_left``, ``iterate`` out, and
+                      ``progress`` (the decision, with ``iterate``) if it has one
         move          ``DdaMove`` in; ``move.take`` out (the run takes the move at this
                       edge: it is idle or applies its running move's last iteration)
         steps         ``AxisPulses`` out
@@ -258,6 +259,15 @@ def dda_run(clock, reset, cmd, move, steps):
         last_piece = crossings == 0
         finished.next = (step.line and step.last) or (last_piece and (tail_ends or (both_near and diagonal)))
         next_piece.next = not last_piece and (tail_ends or (both_near and diagonal))
+
+    if cmd.progress is not None:
+        @always_comb
+        def progress():
+            # a helix follows the decision of the iteration taken (dda_helix)
+            cmd.progress.step_u.next = go_x
+            cmd.progress.step_v.next = go_y
+            cmd.progress.u_inward.next = step.x_inward
+        variant_logic.append(progress)
 
     @always_comb
     def handover():

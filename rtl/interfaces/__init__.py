@@ -16,8 +16,9 @@ from rtl.interfaces.card import (ERROR_BITS, INPUT_ESTOP, MACHINE_INPUTS, MARK_T
                                  TIMING_BITS, ENCODER_PINS, AxisBlock, CommandHeader, DirectPulseCommand, FeedPort,
                                  AliasBlock, FifoRead, MarkPort, MotorPins, PulseCommand, PulseControl, RampSettings, ReadChain, RegisterBus, RegisterWord,
                                  SequencerControl, SetPort, StatusWords, StepPositions, StepRequest, machine_inputs)
-from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, AxesCommand, AxisPulses, DdaMove, DdaPlan, DdaPort,
-                                DdaRoot, DdaStep, LinearPort, SetupControl, SetupSequence, axis_index_bits)
+from rtl.interfaces.dda import (TARGET_END, TARGET_RADIUS, TARGET_ZERO, ArcProgress, AxesCommand, AxisPulses, DdaMove,
+                                DdaPlan, DdaPort, DdaRoot, DdaStep, HelixPort, LinearPort, SetupControl, SetupSequence,
+                                axis_index_bits)
 from rtl.interfaces.encoder import EncoderPins, EncoderPort, EncoderRegisters, FollowingErrorPort, ProbePort, Timestamp
 from rtl.interfaces.machine import Homing, InputConditioning, MachineGuard
 from rtl.interfaces.pci import (ConfigSpace, LocalBus, PciBus, PciPins, TargetBoundary, TargetBuffers, TargetControlNext,
@@ -28,7 +29,7 @@ __all__ = [
     "TargetState",
     "TargetDecode", "TargetParity", "TargetBuffers", "TargetRequests", "TargetTransaction", "TargetBoundary",
     "DdaPort", "DdaPlan", "DdaRoot", "SetupSequence", "SetupControl",
-    "DdaMove", "DdaStep", "LinearPort", "AxisPulses", "AxesCommand", "axis_index_bits", "TARGET_ZERO", "TARGET_RADIUS",
+    "DdaMove", "DdaStep", "LinearPort", "HelixPort", "ArcProgress", "AxisPulses", "AxesCommand", "axis_index_bits", "TARGET_ZERO", "TARGET_RADIUS",
     "TARGET_END", "Homing", "InputConditioning",
     "MachineGuard", "MotorPins", "MACHINE_INPUTS", "SET_INDEX_BITS", "MARK_TAG_BITS", "ERROR_BITS",
     "PULSE_COUNT_BITS", "TIMING_BITS", "AxisBlock", "CommandHeader", "FifoRead", "SequencerControl", "PulseCommand",

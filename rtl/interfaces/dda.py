@@ -3,10 +3,9 @@ from myhdl import Signal, intbv, modbv
 
 from models.dda_build import (COORD_WIDTH, DEFAULT_VARIANTS, PRECISE, accumulator_width, check_coord_width, left_width,
                               threshold_width, variant_set)
+from models.helix_area import area_width
 from models.parameters import AXES
 from rtl.interfaces.bundle import axis_suffixes
-
-ITERATIONS_BITS = 32   # ARC's ITERATIONS operand (models/instructions.py): an unsigned word
 
 
 class DdaPort:
@@ -41,6 +40,9 @@ class DdaPort:
     ``blend`` = 0, the all-ones value while the running move blends or none
     runs; the feed-rate ramp decelerates on it).
 
+    ``progress`` (an ``ArcProgress``, or None): what a helix follows of the
+    iteration the run takes (only a card of more than two axes asks for it).
+
     Build parameters (``models/parameters.py``), read by every block that takes
     the port: ``coord_width`` (``models.dda_build.check_coord_width``: the
     card's range, or narrower for the interpolator alone) and ``variants``
@@ -48,8 +50,9 @@ class DdaPort:
     ``improved,precise`` or ``all``, or as its codes).
     """
 
-    def __init__(self, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS):
+    def __init__(self, coord_width=COORD_WIDTH, variants=DEFAULT_VARIANTS, progress=False):
         self.coord_width = check_coord_width(coord_width)
+        self.progress = ArcProgress() if progress else None
         self.variants = variant_set(variants)
         low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
         self.start = Signal(bool(0))
@@ -76,6 +79,17 @@ class DdaPort:
     def left_width(self):
         """Width of ``stop_left``: four quadrant pieces of the largest radius, plus one."""
         return left_width(self.coord_width)
+
+
+class ArcProgress:
+    """What the arc DDA's run tells a helix of the iteration it takes
+    (``DdaPort.iterate`` high): ``step_u``, ``step_v`` (its decision: the
+    plane's axes step in this iteration, their pulses leave in the next
+    clock) and ``u_inward`` (|u| shrinks and |v| grows on a step of this
+    iteration; the other way round when low).  Valid only with ``iterate``."""
+
+    def __init__(self):
+        self.step_u, self.step_v, self.u_inward = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
 
 
 class DdaPlan:
@@ -291,26 +305,22 @@ class AxisPulses:
 
 class LinearPort:
     """The N-axis line's port (``rtl/dda/dda_linear.py``), for ``axes`` axes
-    of ``coord_width``-bit signed displacements; it also runs a helix's
-    other axes (the same accumulators: a line and an arc never run at once).
+    of ``coord_width``-bit signed displacements.
 
     The driver gives ``load`` (one clock) with each axis's
     ``magnitude_<axis>`` (|d|, as wide as the coordinates: |-2**(W-1)| fits)
     and ``positive_<axis>`` (the sign: 1 for d >= 0), ``largest`` (max |d|,
-    found before the load: the unit compares no magnitudes), ``helix`` (1: the
-    threshold is ``iterations``, an ARC's ITERATIONS K, 32 bits; 0: a line,
-    threshold ``largest``), and ``advance`` (one iteration in each clock it is
-    high while an axis has steps left: the feed rate's tick for a line, the
-    arc's iterations for a helix); the unit drives ``following`` (an axis
-    has steps left), ``busy`` (a line's iterations left) and ``left`` (how
-    many: the threshold T = max |d| less those done, exactly the iterations
-    the line has left; 0 for a helix)."""
+    found before the load: the unit compares no magnitudes, its threshold),
+    and ``advance`` (one iteration in each clock it is high while an axis
+    has steps left: the feed rate's tick); the unit drives ``following`` (an
+    axis has steps left), ``busy`` (iterations left) and ``left`` (how many:
+    the threshold T = max |d| less those done).  The magnitudes and signs
+    are the driver's registers: a helix (``HelixPort``) reads the same."""
 
     def __init__(self, axes=AXES.default, coord_width=COORD_WIDTH):
         self.axes = axes
         self.load, self.advance, self.busy = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-        self.helix, self.following = Signal(bool(0)), Signal(bool(0))
-        self.iterations = Signal(intbv(0)[ITERATIONS_BITS:])
+        self.following = Signal(bool(0))
         for suffix in axis_suffixes(axes):
             setattr(self, f"magnitude_{suffix}", Signal(intbv(0)[coord_width:]))
             setattr(self, f"positive_{suffix}", Signal(bool(0)))
@@ -326,6 +336,31 @@ class LinearPort:
         return getattr(self, f"positive_{axis_suffixes(self.axes)[axis]}")
 
 
+class HelixPort:
+    """The helix axes' port (``rtl/dda/dda_helix.py``): ``line``'s
+    magnitudes and signs (a ``LinearPort``'s, read as each axis's |h| and
+    direction), an arc's ``progress`` (``ArcProgress``) and, from the driver:
+    ``build`` (one clock, with the arc's ``start``: take |``xs``|,
+    |``ys``|, the arc's start in its plane, and build the products of the
+    waiting helix from the magnitudes registered at that edge), ``area``
+    (the waiting helix's AREA W, ``area_width(coord_width)`` bits, held from
+    the clock after ``build`` to its ``load``), ``load`` (one clock: the
+    waiting helix becomes the running one), ``advance`` (one iteration),
+    ``alone`` (the arc has ended: each axis with steps left steps on every
+    ``advance``).  The unit drives ``built`` (the waiting helix's products
+    are complete: ``load`` may come) and ``following`` (an axis of the
+    running helix has steps left)."""
+
+    def __init__(self, line, progress, xs, ys):
+        self.line, self.progress = line, progress
+        self.axes = line.axes
+        self.coord_width = len(xs)
+        self.xs, self.ys = xs, ys
+        self.build, self.load, self.advance, self.alone = (Signal(bool(0)) for _ in range(4))
+        self.area = Signal(intbv(0)[area_width(self.coord_width):])
+        self.built, self.following = Signal(bool(1)), Signal(bool(0))
+
+
 def axis_index_bits(axes):
     """Bits of an axis index on a card of ``axes`` axes (1 for two axes)."""
     return max(1, (axes - 1).bit_length())
@@ -339,8 +374,8 @@ class AxesCommand:
     in X, Y only), each axis's signed displacement (``delta_<axis>``,
     ``coord_width`` bits) of a LINE (the line runs through ``dda_linear``;
     on two axes a line is ``DdaPort``'s (``xe``, ``ye``)) or of an ARC's
-    helix (0 on the axes it does not move), and an ARC's ``iterations``
-    (ITERATIONS K; 0: no helix), and ``largest``: a LINE's largest
+    helix (0 on the axes it does not move), and an ARC's ``area`` (AREA W,
+    ``area_width(coord_width)`` bits; 0: no helix), and ``largest``: a LINE's largest
     |displacement| (its iteration count T), which the sequencer finds as the
     operands arrive so that no comparison of the axes waits for the start
     (``rtl/regs/axis_operands.py``; of an ARC it is not read)."""
@@ -351,7 +386,7 @@ class AxesCommand:
             self.largest = Signal(intbv(0)[coord_width:])
             bits = axis_index_bits(axes)
             self.u, self.v = Signal(intbv(0)[bits:]), Signal(intbv(1)[bits:])
-            self.iterations = Signal(intbv(0)[ITERATIONS_BITS:])
+            self.area = Signal(intbv(0)[area_width(coord_width):])
             low, high = -(1 << (coord_width - 1)), 1 << (coord_width - 1)
             for suffix in axis_suffixes(axes):
                 setattr(self, f"delta_{suffix}", Signal(intbv(0, min=low, max=high)))

@@ -3,7 +3,7 @@ from myhdl import ConcatSignal, Signal, always_comb, block, concat, intbv
 
 from models import instructions as isa
 from models.axes import XY_MASK, axes_of
-from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT
+from rtl.regs.axis_operands import AREA_SLOT, AXIS_SLOT
 from rtl.regs.instruction_tables import opcode_rom
 
 
@@ -34,7 +34,7 @@ def command_header(word, header):
     Framing by the N-axis form (``models/instructions.py``,
     ``operand_names``): the fixed operands, then for an axis mask (LINE.AXES,
     PULSE.AXES, ARC.HELIX at the same bits) of 0 the operands it stands for
-    (LINE, PULSE: two), otherwise the lead operands (ARC: ITERATIONS) and one
+    (LINE, PULSE: two), otherwise the lead operands (ARC: AREA_LO, AREA_HI) and one
     per axis in the mask.  So a stream the host's encoder writes is framed
     whatever the card does with it.
 
@@ -47,8 +47,8 @@ def command_header(word, header):
     U_AXIS, V_AXIS, or X, Y when both are 0.  ``slots``: the operand
     registers its operands go to (the sequencer puts each into the lowest
     slot left): on a card of two axes a LINE's or PULSE's axes (0: X and
-    Y), all ones otherwise; on more axes XS .. YE in slots 0..3, ITERATIONS in 4 and an
-    axis i's displacement or count in 5 + i (``axis_operands``).
+    Y), all ones otherwise; on more axes XS .. YE in slots 0..3, AREA_LO, AREA_HI in 4, 5 and an
+    axis i's displacement or count in 6 + i (``axis_operands``).
 
         word      ==X=ARC hdr=X=XS=X=YS=X ...
         operands  ==X====4====X==?=X ...       valid while word is a header
@@ -77,10 +77,10 @@ def command_header(word, header):
     ones_in = tuple(bin(mask).count("1") for mask in range(1 << mask_width))
     beyond = ((1 << mask_width) - 1) & ~((1 << axes) - 1)   # the mask bits of axes the card lacks
     xy_only = axes == 2   # a card of two axes turns arcs in X, Y only (models.dda_axes.check_move)
-    # a card of more axes: XS .. YE, ITERATIONS, then one slot per axis (rtl/regs/axis_operands.py)
-    arc_slots = (1 << ITERATIONS_SLOT) - 1
+    # a card of more axes: XS .. YE, AREA_LO, AREA_HI, then one slot per axis (rtl/regs/axis_operands.py)
+    arc_slots = (1 << AREA_SLOT) - 1
     xy_slots = XY_MASK << AXIS_SLOT
-    helix_slots = (1 << (ITERATIONS_SLOT + 1)) - 1   # XS .. YE and ITERATIONS
+    helix_slots = (1 << AXIS_SLOT) - 1   # XS .. YE and AREA
     plane_axes = Signal(intbv(0)[axes:])
     helix_on_plane = Signal(bool(0))
 

@@ -5,7 +5,7 @@ from models import instructions as isa
 from models.parameters import AXES, COORD_WIDTH
 from rtl.interfaces import (AxesCommand, CommandHeader, DdaPort, FifoRead, MarkPort, PulseCommand, SequencerControl,
                             SetPort, card_reset)
-from rtl.regs.axis_operands import AXIS_SLOT, ITERATIONS_SLOT, axis_operands
+from rtl.regs.axis_operands import AREA_SLOT, AXIS_SLOT, area_operand_bits, axis_operands
 from rtl.regs.command_header import command_header
 from rtl.regs.instruction_tables import OPERANDS_MAX, fits_width, header_field, opcode_rom, operand_mask
 from rtl.regs.operand_register import operand_register
@@ -19,7 +19,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     Ports (``rtl/interfaces/``): ``fifo`` (``FifoRead``), ``control``
     (``SequencerControl``), ``dda`` (``DdaPort``), ``axes_cmd``
     (``AxesCommand``: on a card of more than two axes the plane, a LINE's or
-    helix's displacements and an ARC's ITERATIONS), ``pulses`` (``PulseCommand``), ``set_port``
+    helix's displacements and an ARC's AREA), ``pulses`` (``PulseCommand``), ``set_port``
     (``SetPort``), ``mark`` (``MarkPort``).
     Fetch: the FIFO is read one word per clock (``fifo.pop``; the word
     arrives in ``fifo.dout`` the next clock) into the next-instruction
@@ -29,8 +29,8 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     and a PULSE's its axes', a LINE's others are cleared, otherwise in
     order, so a LINE's displacement or a PULSE's count of axis i is in
     register i; more axes: ``axis_operands``'
-    slots, XS .. YE, ITERATIONS, then axis i's displacement or count in
-    register 5 + i).  Execute: LINE/ARC drive
+    slots, XS .. YE, AREA_LO, AREA_HI, then axis i's displacement or count in
+    register 6 + i).  Execute: LINE/ARC drive
     ``dda`` (a one-clock ``start`` with the operands and BLEND) as soon as
     the DDA is ``ready``, also while the move before still runs, so chained
     segments leave no gap; PULSE loads the direct pulse generators of its
@@ -71,7 +71,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     # and of the other operands the coordinate and count bits (their checks read
     # the arriving word); a card of two axes has four operand registers (an ARC's
     # four, a LINE's two), a card of N > 2 axes AXIS_SLOT + N: XS .. YE, an ARC's
-    # ITERATIONS, and one per axis for a LINE's or helix's displacement or a PULSE's count
+    # AREA_LO and AREA_HI, and one per axis for a LINE's or helix's displacement or a PULSE's count
     field_bits = max(lsb + width for op in isa.OPCODES for _, lsb, width, _ in op.header_fields)
     if field_bits > isa.OPCODE_LSB:
         raise ValueError("the header's fields overlap the opcode")
@@ -84,8 +84,9 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     else:
         slot_count = AXIS_SLOT + axes
         operands = ([Signal(intbv(0)[32:]), Signal(intbv(0)[wide:])]
-                    + [Signal(intbv(0)[coord_width:]) for _ in range(2, ITERATIONS_SLOT)]
-                    + [Signal(intbv(0)[32:])] + [Signal(intbv(0)[wide:]) for _ in range(axes)])
+                    + [Signal(intbv(0)[coord_width:]) for _ in range(2, AREA_SLOT)]
+                    + [Signal(intbv(0)[bits:]) for bits in area_operand_bits(coord_width)]
+                    + [Signal(intbv(0)[wide:]) for _ in range(axes)])
     operand_0, operand_1, operand_2, operand_3 = operands[:4]
     arriving = CommandHeader(axes, slot_count, OPERANDS_MAX)
     slots_left, slot_taken = Signal(intbv(0)[slot_count:]), Signal(intbv(0)[slot_count:])
@@ -138,12 +139,12 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
     tag_lsb, tag_msb = header_field("MARK", "TAG")
     reading = command_header(fifo.dout, arriving)
     # an operand goes to the lowest register left; a LINE header clears those of its card's axes (two
-    # axes), an ARC header the ITERATIONS register and a move's or PULSE's header the axes' (more axes)
-    clear_iterations, clear_axes = Signal(bool(0)), Signal(bool(0))
+    # axes), an ARC header the AREA registers and a move's or PULSE's header the axes' (more axes)
+    clear_area, clear_axes = Signal(bool(0)), Signal(bool(0))
     if axes == 2:
         clears = [line_in if index < axes else None for index in range(slot_count)]
     else:
-        clears = [None] * ITERATIONS_SLOT + [clear_iterations] + [clear_axes] * axes
+        clears = [None] * AREA_SLOT + [clear_area] * (AXIS_SLOT - AREA_SLOT) + [clear_axes] * axes
     registers = [operand_register(clock, fifo.dout, slot_taken(index), clear, register)
                  for index, (clear, register) in enumerate(zip(clears, operands))]
 
@@ -379,7 +380,7 @@ def sequencer(clock, reset, fifo, control, dda, axes_cmd, pulses, set_port, mark
 
         axis_units = [arriving_operand, field_checks,
                       axis_operands(clock, reset, fifo.dout, arriving, header_in, operand_in, fetched, operands,
-                                    axes_cmd, pulses, clear_iterations, clear_axes, bad_helix)]
+                                    axes_cmd, pulses, clear_area, clear_axes, bad_helix)]
     return (fits, reading, registers, arriving_header, axis_units, lookup_coords, lookup_counts, lookup_set, lookup_variant, fetch_request,
             operand_routing, discarding, fetch, check, motion_status, completion, readiness, issuing, execute,
             dwell_count, present, report)

@@ -3,8 +3,8 @@
 The card's interpolator (``rtl/dda/dda_axes.py``) of three axes at the
 narrowest coordinate width (``NARROW_WIDTH`` = 6 bits: -32..31 on each
 axis) runs its lines through ``dda_linear``.  ``NarrowAxes`` drives the
-Verilated ``dda_axes`` with ``advance`` held high (the line unit iterates
-once a clock) and reads the STEP/DIR edges the harness records;
+Verilated ``dda_axes`` with ``advance`` held high for lines (the line unit
+iterates once a clock), high every other clock for helices and reads the STEP/DIR edges the harness records;
 ``check_line`` compares them with the iterations of
 ``models.dda_axes.MoveIterator``:
 
@@ -18,25 +18,28 @@ one line and must hold for every line.  Every line of the 6-bit build is
 64**3 = 262,144 lines (the slow set); ``sample_lines`` draws a seeded
 sample for the default suite.
 
-Helices (``check_helix``): an arc of the precise mode in a plane of two
-axes, the third moving with it (ITERATIONS the arc's K,
-``models.dda_axes.with_iterations``); the arc iterates every other clock
-(its run takes two clocks an iteration), so iteration i is on clock
-offset + 2i, the offset measured on a helix-free arc.  ``every_helix``:
-every arc of the 6-bit build in X, Y (``sim.card.dda_exhaustive.every_arc``,
-both directions) rising on Z by K (counter-clockwise) or falling by K - 1
-(clockwise), the steepest helices the coordinates allow (up to 31, -32
-steps; the slow set); ``sample_helices``: seeded
-random arcs in every plane, random rises (the default suite).
+Helices (``run_helices``): an arc of the precise mode in a plane of two
+axes, the third moving with the area it sweeps (AREA the arc's W,
+``models.helix_area.arc_area``, or a wrong one); the arc iterates every
+other clock (its run takes two clocks an iteration), so iteration i is on
+clock offset + 2i, the offset measured on a helix-free arc.
+``every_helix``: every arc of the 6-bit build in X, Y
+(``sim.card.dda_exhaustive.every_arc``, both directions) rising on Z by the
+most the host's rule takes (W // max w, up to 31; counter-clockwise) or
+falling by 32 (clockwise: the steepest the coordinates allow, mostly
+beyond the rule, so that the remainder D goes below 0; the slow set);
+``sample_helices``: seeded random arcs in every plane, random rises, a
+wrong AREA one time in four (down to 1: D saturates; the default suite).
 """
 import itertools
 import random
 from dataclasses import replace
 
 from models.axes import PLANES
-from models.dda_axes import MoveIterator, arc_iterations
+from models.dda_axes import MoveIterator
 from models.dda_build import DDA_MIN_WIDTH, PRECISE
 from models.dda_plan import ArcCommand, AxesLineCommand, plan_arc
+from models.helix_area import arc_area
 from rtl.convert import build_dir, convert_block
 from sim.card.dda_exhaustive import Tally, _mismatch, every_arc, narrow_model
 
@@ -113,31 +116,36 @@ class NarrowAxes:
                 model[f"cmd_{name}"] = getattr(command, name) & ones
             model["cmd_ccw"], model["cmd_variant"] = int(command.ccw), command.variant
             model["axes_cmd_u"], model["axes_cmd_v"] = command.plane
-            model["axes_cmd_iterations"] = command.iterations or 0
+            model["axes_cmd_area"] = command.area or 0
 
-    def run(self, command, clocks):
-        """Start ``command`` and run ``clocks`` clocks after the ``start`` edge;
+    def run(self, command, clocks, pace=1):
+        """Start ``command`` and run ``clocks`` clocks after the ``start`` edge, ``advance`` high
+        in every clock (``pace`` 1) or every other one from the first after that edge (2: an arc's
+        pace, so that a helix's axes that go on alone after it keep it);
         ([(clock after that edge, pin state)] of every clock with a step, busy, ready, dones)."""
         model = self.model
         self.put(command)
         model["cmd_start"] = 1
+        model["cmd_advance"] = int(pace == 1)
         model.tick()
         model["cmd_start"] = 0
         first = model.clocks
         dones = 0
-        for _ in range(clocks):
+        for index in range(clocks):
+            model["cmd_advance"] = int(index % pace == 0)
             model.tick()
             dones += bool(model["cmd_done"])
+        model["cmd_advance"] = 1
         edges, states = model.take_edges()
         ends = [int(clock) for clock in edges[1:]] + [model.clocks + 1]
         steps = [(clock - first, int(state)) for start, state, end in zip(edges, states, ends) if int(state) & STEPS
                  for clock in range(int(start), end)]
         return steps, bool(model["cmd_busy"]), bool(model["cmd_ready"]), dones
 
-    def offset(self, command=AxesLineCommand((1, 1, 1))):
+    def offset(self, command=AxesLineCommand((1, 1, 1)), pace=1):
         """Clocks from the ``start`` edge to the edge of iteration 0, measured on ``command``
-        (a line of one step, or an arc that steps in its first iteration)."""
-        steps, _, ready, _ = self.run(command, 4 * self.width + 40)
+        (a line of one step, or an arc that steps in its first iteration) at ``pace``."""
+        steps, _, ready, _ = self.run(command, 4 * self.width + 40, pace)
         if not (steps and ready):
             raise ValueError(f"{command} does not step or does not end: no offset from it")
         return steps[0][0]
@@ -150,7 +158,7 @@ def check_line(dda, command, tally, offset, keep=20, pace=1):
     """Run one line (or, ``pace`` 2, a helix) on ``dda`` and compare it with the model;
     mismatches go to ``tally``."""
     expected, iterations = expected_steps(command, dda.width)
-    steps, busy, ready, dones = dda.run(command, offset + pace * iterations + END_CLOCKS)
+    steps, busy, ready, dones = dda.run(command, offset + pace * iterations + END_CLOCKS, pace)
     tally.moves += 1
     tally.iterations += iterations
     tally.steps += len(expected)
@@ -172,27 +180,30 @@ def run_lines(dda, lines):
     return tally
 
 
-def helix_of(arc, rise, coord_width=NARROW_WIDTH):
-    """``arc`` (in a plane of two of the three axes) with ITERATIONS its K and the third axis
-    rising by ``rise(K)``, within the coordinates' range."""
-    iterations = arc_iterations(arc, coord_width)
+def helix_of(arc, rise, coord_width=NARROW_WIDTH, area=None):
+    """``arc`` (in a plane of two of the three axes) with the third axis rising by
+    ``rise(swept)`` (``swept`` its ``ArcArea``), within the coordinates' range, and AREA
+    ``area(W)`` (W the arc's own when None)."""
+    swept = arc_area(arc, coord_width)
     other = next(axis for axis in range(AXES) if axis not in arc.plane)
     low, high = -(1 << (coord_width - 1)), (1 << (coord_width - 1)) - 1
-    helix = tuple(max(low, min(high, rise(iterations))) if axis == other else 0 for axis in range(AXES))
-    return replace(arc, helix=helix, iterations=iterations)
+    helix = tuple(max(low, min(high, rise(swept))) if axis == other else 0 for axis in range(AXES))
+    return replace(arc, helix=helix, area=swept.total if area is None else area(swept.total))
 
 
 def every_helix(coord_width=NARROW_WIDTH):
-    """Every arc of the build in X, Y (the precise mode, both directions) with Z rising by K
-    counter-clockwise and falling by K - 1 clockwise."""
+    """Every arc of the build in X, Y (the precise mode, both directions) with Z rising by the
+    most the host's rule takes counter-clockwise and falling by 32 clockwise."""
     for command, accepted in every_arc(coord_width):
         if accepted:
-            yield helix_of(command, (lambda k: k) if command.ccw else (lambda k: 1 - k), coord_width)
+            yield helix_of(command, (lambda a: a.total // a.largest) if command.ccw else (lambda a: -(1 << 5)),
+                           coord_width)
 
 
 def sample_helices(count, seed, coord_width=NARROW_WIDTH):
     """``count`` seeded random helices: arcs of the precise mode in the planes G17, G18, G19 and
-    their reverses, the third axis rising by any amount up to K either way."""
+    their reverses, the third axis rising by any amount the coordinates allow, AREA the arc's own
+    three times in four, else anything from 1 to twice it."""
     rng = random.Random(seed)
     high = (1 << (coord_width - 1)) - 1
     planes = [PLANES[17], PLANES[18], PLANES[19]]
@@ -206,14 +217,16 @@ def sample_helices(count, seed, coord_width=NARROW_WIDTH):
             plan_arc(arc, coord_width)
         except ValueError:
             continue
-        helices.append(helix_of(arc, lambda k: rng.randint(-k, k), coord_width))
+        wrong = rng.random() < 0.25
+        helices.append(helix_of(arc, lambda a: rng.randint(-high - 1, high), coord_width,
+                                (lambda w: rng.randint(1, 2 * w)) if wrong else None))
     return helices
 
 
 def run_helices(dda, helices):
     """Check every helix of ``helices`` on ``dda``; the ``Tally``."""
     tally = Tally()
-    tally.offsets["arc"] = offset = dda.offset(ArcCommand(2, 0, 0, 2, variant=PRECISE))
+    tally.offsets["arc"] = offset = dda.offset(ArcCommand(2, 0, 0, 2, variant=PRECISE), pace=2)
     for command in helices:
         check_line(dda, command, tally, offset, pace=2)
     return tally

@@ -16,7 +16,7 @@ from models import instructions as isa
 from models import registers as regmap
 from models.axes import PLANES
 from models.commands import PulseCommand, command_words, decode_words
-from models.dda_axes import check_move, check_pulse, with_iterations
+from models.dda_axes import check_move, check_pulse, with_area
 from models.dda_plan import ArcCommand, AxesLineCommand
 from models.parameters import Build
 from rtl.card_core import card_core, card_core_ports
@@ -115,16 +115,17 @@ REFUSED = {
     "line_too_wide": isa.encode("LINE", 1, 1 << 23, AXES=0b101),
     "plane_axis_beyond": isa.encode("ARC", 10, 0, 0, 10, U_AXIS=3, V_AXIS=0),
     "plane_one_axis": isa.encode("ARC", 10, 0, 0, 10, U_AXIS=2, V_AXIS=2),
-    "helix_on_plane": isa.encode("ARC", 10, 0, 0, 10, 16, 5, HELIX=0b010),
-    "helix_axis_beyond": isa.encode("ARC", 10, 0, 0, 10, 16, 5, HELIX=0b1000),
-    "helix_iterations_zero": isa.encode("ARC", 10, 0, 0, 10, 0, 5, HELIX=0b100),
-    "helix_steeper": isa.encode("ARC", 0, 10, 10, 0, 16, -17, U_AXIS=2, V_AXIS=0, HELIX=0b010),
+    "helix_on_plane": isa.encode("ARC", 10, 0, 0, 10, 160, 0, 5, HELIX=0b010),
+    "helix_axis_beyond": isa.encode("ARC", 10, 0, 0, 10, 160, 0, 5, HELIX=0b1000),
+    "helix_area_zero": isa.encode("ARC", 10, 0, 0, 10, 0, 0, 5, HELIX=0b100),
+    # AREA_HI's bit 17: AREA's bit 49, beyond its 49 bits on 24-bit coordinates
+    "helix_area_too_wide": isa.encode("ARC", 0, 10, 10, 0, 160, 1 << 17, -17, U_AXIS=2, V_AXIS=0, HELIX=0b010),
     "pulse_axis_beyond": isa.encode("PULSE", 3, 4, AXES=0b1001),
 }
 
 
-@pytest.mark.parametrize("cases", [["line_axis_beyond", "plane_one_axis", "helix_on_plane", "helix_steeper"],
-                                   ["line_too_wide", "plane_axis_beyond", "pulse_axis_beyond", "helix_iterations_zero",
+@pytest.mark.parametrize("cases", [["line_axis_beyond", "plane_one_axis", "helix_on_plane", "helix_area_too_wide"],
+                                   ["line_too_wide", "plane_axis_beyond", "pulse_axis_beyond", "helix_area_zero",
                                     "helix_axis_beyond"]])
 def test_three_axis_card_refuses_what_it_cannot_run_and_frames_the_rest(cases):
     # the golden model refuses each of them too (models.dda_axes.check_move)
@@ -164,16 +165,16 @@ def test_three_axis_card_runs_3d_lines_and_arcs_in_every_plane(cosim):
 
 
 # helices: G17 rising on Z, G18 on Y, G19 falling on X, chained (BLEND) and not; the last one's
-# ITERATIONS a third too many, so that its Z goes on after the arc
-HELICES = [with_iterations(ArcCommand(20, 0, 0, 20, plane=G17, helix=(0, 0, 9), blend=True)),
-           with_iterations(ArcCommand(0, 15, 15, 0, ccw=False, plane=G18, helix=(0, -12, 0), blend=True)),
+# AREA a third too large, so that its Z goes on after the arc
+HELICES = [with_area(ArcCommand(20, 0, 0, 20, plane=G17, helix=(0, 0, 9), blend=True)),
+           with_area(ArcCommand(0, 15, 15, 0, ccw=False, plane=G18, helix=(0, -12, 0), blend=True)),
            line(3, -4, 5),
-           with_iterations(ArcCommand(12, 0, -12, 0, plane=G19, helix=(-20, 0, 0))),
-           replace(with_iterations(ArcCommand(10, 0, 0, 10, helix=(0, 0, 7))), iterations=21)]
+           with_area(ArcCommand(12, 0, -12, 0, plane=G19, helix=(-20, 0, 0))),
+           replace(with_area(ArcCommand(10, 0, 0, 10, helix=(0, 0, 7))), area=210)]
 
 
 @pytest.mark.slow(reason="the whole core with helices in three planes: the end-to-end short scenario runs two "
-                         "helices on the card by default (MyHDL, Icarus, Verilator), the chain bench wrong ITERATIONS")
+                         "helices on the card by default (MyHDL, Icarus, Verilator), the chain bench wrong AREA")
 def test_three_axis_card_runs_helices_in_every_plane():
     results = {}
     words = [word for move in HELICES for word in command_words(move)]

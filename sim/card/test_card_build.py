@@ -37,7 +37,7 @@ DEVICE_CODES = {"generic": 0, "ice40": 1, "ecp5": 2}
 
 def expected_words(build, device):
     """ID, CLOCK_HZ, FIFO_SIZE and BUILD as docs/registers.md defines them."""
-    return {"ID": 0xDDAC << 16 | 0x0204,   # ID.VERSION 2.4
+    return {"ID": 0xDDAC << 16 | 0x0300,   # ID.VERSION 3.0
             "CLOCK_HZ": build["clock_hz"],
             "FIFO_SIZE": build["fifo_depth"],
             "BUILD": (build["coord_width"] | build.get("axes", 2) << 8 | VARIANT_BITS[build["variants"]] << 16

@@ -13,7 +13,7 @@ import pytest
 
 from models import registers as regmap
 from models.axes import PLANES
-from models.dda_axes import with_iterations
+from models.dda_axes import with_area
 from models.dda_plan import ArcCommand, AxesLineCommand
 from sim.card.card_bench import axes_path
 from sim.card.card_e2e import motion_scenario, run_card
@@ -27,8 +27,8 @@ def line(*deltas, blend=False):
 
 
 def helix(*arc, **fields):
-    """A helical arc with its ITERATIONS (the arc's K)."""
-    return with_iterations(ArcCommand(*arc, **fields))
+    """A helical arc with its AREA (the arc's W)."""
+    return with_area(ArcCommand(*arc, **fields))
 
 
 SHORT = [line(6, -4, 9, blend=True), helix(10, 0, 0, 10, plane=G18, helix=(0, 7, 0)), line(0, 3, -5),

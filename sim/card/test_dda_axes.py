@@ -2,9 +2,10 @@
 
 Chains of lines over N axes and arcs in planes of any two axes (G17, G18,
 G19 and the reversed pairs; X, Y on two axes), on more than two axes
-helices among them (the other axes moving with the arc, ITERATIONS the
-arc's own K mostly, a wrong one now and then so that the helix ends before
-or after the arc), each started as soon as the interpolator is
+helices among them (the other axes moving with the area the arc sweeps,
+AREA the arc's own W mostly, a wrong one now and then so that the helix
+ends before or after the arc; rises mostly within the host's rule, one
+step an iteration at most, now and then steeper), each started as soon as the interpolator is
 ready (the sequencer's way: set up while the move before runs), the feed's
 ``advance`` random but never in two clocks running.  Checked against
 ``models.dda_axes.MoveIterator`` run on the same commands, one after the
@@ -21,7 +22,8 @@ from dataclasses import replace
 import pytest
 from myhdl import block
 
-from models.dda_axes import MoveIterator, arc_iterations
+from models.dda_axes import MoveIterator
+from models.helix_area import arc_area
 from models.dda_build import IMPROVED, PRECISE
 from models.dda_plan import ArcCommand, AxesLineCommand
 from rtl.dda.dda_axes import dda_axes, dda_axes_ports
@@ -38,16 +40,19 @@ MAJOR = (50, 60)   # a line's longest displacement
 
 
 def random_helix(rng, arc, axes):
-    """``arc`` with a helix on some of the other axes (up to K steps each), ITERATIONS K the
-    arc's own (three times in four) or off by up to a third (the helix ends before or after the arc)."""
+    """``arc`` with a helix on some of the other axes (up to W / max w steps each, the host's rule, or
+    now and then up to K), AREA W the arc's own (three times in four) or off by up to a third (the
+    helix ends before or after the arc)."""
     others = [axis for axis in range(axes) if axis not in arc.plane]
-    iterations = arc_iterations(arc, COORD_WIDTH)
+    swept = arc_area(arc, COORD_WIDTH)
+    area = swept.total
     if rng.random() < 0.25:
-        iterations = max(1, iterations + rng.randint(-iterations // 3, iterations // 3))
+        area = max(1, area + rng.randint(-area // 3, area // 3))
+    steepest = swept.iterations if rng.random() < 0.2 else max(1, swept.total // swept.largest)
     helix = [0] * axes
     for axis in rng.sample(others, rng.randint(1, len(others))):
-        helix[axis] = rng.choice((-1, 1)) * rng.randint(1, iterations)
-    return replace(arc, helix=tuple(helix), iterations=iterations)
+        helix[axis] = rng.choice((-1, 1)) * rng.randint(1, steepest)
+    return replace(arc, helix=tuple(helix), area=area)
 
 
 def random_moves(rng, axes, count, helices=False):
@@ -109,7 +114,7 @@ def drive(cmd, axes_cmd, move):
             helix = tuple(move.helix) + (0,) * axes_cmd.axes
             for axis in range(axes_cmd.axes):
                 axes_cmd.delta(axis).next = helix[axis]
-            axes_cmd.iterations.next = move.iterations or 0
+            axes_cmd.area.next = move.area or 0
 
 
 def model_iterations(move, axes):

@@ -144,7 +144,7 @@ def test_a_sample_of_helices_equals_the_model(axes_dda):
     assert tally.moves == 400 and tally.mismatches == []
 
 
-@pytest.mark.slow(reason="every arc of the 6-bit build with its steepest helix: 1.5 million moves on Verilator")
+@pytest.mark.slow(reason="every arc of the 6-bit build with a helix, the steepest the host takes or -32: 1.5 million moves on Verilator")
 def test_every_steepest_helix_equals_the_model(axes_dda):
     from sim.card.dda_axes_exhaustive import every_helix, run_helices
 

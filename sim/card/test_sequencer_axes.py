@@ -10,10 +10,12 @@ streams of LINEs (any axis mask, axes at rest, the coordinates' extremes)
 mixed with helical ARCs and PULSEs, whose larger operands must not leak
 into the next LINE, reach it from a FIFO that runs dry at random; at every
 start of a LINE, ``largest`` and each ``delta`` are compared with the
-command's own displacements.  The same bench checks the helix's RANGE rule
-at its edges (|displacement| against ITERATIONS, either sign), which the
-sequencer judges on the FIFO's word as it arrives.  On the MyHDL block and
-its Verilog in Icarus.
+command's own displacements.  The same bench checks the helix's RANGE rules
+at their edges (AREA 0, AREA at and beyond its ``area_width`` bits in
+AREA_LO or AREA_HI, on a card whose AREA fits one word and on one that
+needs both), which the sequencer judges on the FIFO's word as it arrives,
+and that every helix started hands on its AREA.  On the MyHDL block and its
+Verilog in Icarus.
 """
 import random
 
@@ -24,6 +26,7 @@ from models import instructions as isa
 from models.commands import PulseCommand, stream_words
 from models.dda_axes import check_move
 from models.dda_plan import AxesLineCommand, ArcCommand
+from models.helix_area import area_width
 from rtl.regs.sequencer import sequencer, sequencer_ports
 from sim.backends.clocking import clock_source, reset_then_step
 from sim.backends.icarus import convert_and_cosimulate
@@ -31,7 +34,7 @@ from sim.backends.waves import run_traced
 
 HALF_PERIOD = 5
 COORD_WIDTH = 14   # narrow: random displacements reach the coordinates' extremes
-ITERATIONS = 1 << 20   # a helix's K: at least every helix displacement (the RANGE rule)
+AREA = (1 << 20) + 3   # a helix's AREA (any not 0 that fits is taken)
 
 
 def random_commands(rng, axes, count):
@@ -46,7 +49,7 @@ def random_commands(rng, axes, count):
                                                   for _ in range(axes))))
         elif kind < 0.85:
             helix = (0, 0) + tuple(rng.randint(low, high) for _ in range(axes - 2))
-            commands.append(ArcCommand(low, high, high, low, helix=helix, iterations=ITERATIONS))
+            commands.append(ArcCommand(low, high, high, low, helix=helix, area=AREA))
         else:
             commands.append(PulseCommand(tuple(rng.randint(-100, 100) for _ in range(axes))))
     return commands
@@ -70,11 +73,11 @@ def _bench(ports, cosim, words, step, cycles, rng):
     return dut, fifo_source, clock_source(clock, 2 * HALF_PERIOD), reset_then_step(clock, reset, cycles, step)
 
 
-def run_stream(name, axes, commands, rng, cosim):
+def run_stream(name, axes, commands, rng, cosim, coord_width=COORD_WIDTH):
     """Run ``commands`` through a sequencer of ``axes`` axes; per DDA start
     ("start", the command lines and ``axes_cmd``'s values) and per refusal
     ("refused", the error code, cleared at once), in order."""
-    ports = sequencer_ports(coord_width=COORD_WIDTH, axes=axes)
+    ports = sequencer_ports(coord_width=coord_width, axes=axes)
     control, dda, axes_cmd = ports["control"], ports["dda"], ports["axes_cmd"]
     words = stream_words(commands)
     events = []
@@ -89,7 +92,7 @@ def run_stream(name, axes, commands, rng, cosim):
             control.clear_error.next = 1
         if dda.start:
             deltas = tuple(int(axes_cmd.delta(axis)) for axis in range(axes))
-            events.append(("start", bool(dda.line), deltas, int(axes_cmd.largest)))
+            events.append(("start", bool(dda.line), deltas, int(axes_cmd.largest), int(axes_cmd.area)))
 
     run_traced(_bench(ports, cosim, words, step, 12 * len(words) + 50, rng),
                f"sequencer_axes_{name}_{'icarus' if cosim else 'myhdl'}")
@@ -103,38 +106,35 @@ def test_line_starts_with_its_largest_displacement(seed, axes, cosim):
     commands = random_commands(rng, axes, 40)
     events = run_stream(f"{seed}_{axes}", axes, commands, rng, cosim)
     assert [event for event in events if event[0] == "refused"] == []
-    lines = [event[2:] for event in events if event[1]]
+    lines = [event[2:4] for event in events if event[1]]
     # the golden values: each LINE's own displacements and the largest of their magnitudes
     assert lines == [(command.deltas, max(map(abs, command.deltas))) for command in commands
                      if isinstance(command, AxesLineCommand)]
 
 
-def helices_at_their_limit(axes):
-    """Helical ARCs whose Z displacement is at, just within and just beyond
-    ITERATIONS, of either sign, and the coordinates' extremes."""
-    low, high = -(1 << (COORD_WIDTH - 1)), (1 << (COORD_WIDTH - 1)) - 1
+def helices_at_their_limit(axes, coord_width):
+    """Helical ARCs with AREA 0, 1, at its largest, one beyond it (a bit above its
+    ``area_width`` bits) and with AREA_HI's bits set, with either sign of Z's displacement."""
+    bits = area_width(coord_width)
+    areas = (0, 1, (1 << bits) - 1, 1 << bits, (1 << bits) + 1, 1 << 32, (1 << 63) | 5, (1 << 32) - 1)
     arcs = []
-    for iterations in (1, 100, high, high + 1, 1 << 20):
-        for size in {iterations - 1, iterations, iterations + 1, high, -low}:
-            for delta in (size, -size):
-                if delta and low <= delta <= high:
-                    helix = (0, 0, delta) + (0,) * (axes - 3)
-                    arcs.append(ArcCommand(10, 0, 0, 10, helix=helix, iterations=iterations))
+    for area in areas:
+        for delta in (1, -(1 << (coord_width - 1))):
+            arcs.append(ArcCommand(10, 0, 0, 10, helix=(0, 0, delta) + (0,) * (axes - 3), area=area))
     return arcs
 
 
 @pytest.mark.parametrize("cosim", [False, True], ids=["myhdl", "icarus"])
-@pytest.mark.parametrize("axes", [3, 4])
-def test_helix_steeper_than_its_iterations_is_refused(axes, cosim):
-    arcs = helices_at_their_limit(axes)
-    events = run_stream(f"helix_{axes}", axes, arcs, random.Random(axes), cosim)
+@pytest.mark.parametrize("axes, coord_width", [(3, COORD_WIDTH), (4, 24)])   # AREA of 29 bits, of 49
+def test_a_helix_without_an_area_or_with_one_too_wide_is_refused(axes, coord_width, cosim):
+    arcs = helices_at_their_limit(axes, coord_width)
+    events = run_stream(f"helix_{axes}", axes, arcs, random.Random(axes), cosim, coord_width)
     expected = []
     for arc in arcs:
         try:   # the golden rule: models.dda_axes.check_move (docs/axes.md, RANGE)
-            check_move(arc, axes=axes, coord_width=COORD_WIDTH)
-            expected.append("start")
+            check_move(arc, axes=axes, coord_width=coord_width)
+            expected.append(("start", arc.area))
         except ValueError:
-            expected.append("refused")
-    assert "start" in expected and "refused" in expected
-    assert [event[0] for event in events] == expected
-    assert {event[1] for event in events if event[0] == "refused"} == {isa.ERROR_CODE["RANGE"]}
+            expected.append(("refused", isa.ERROR_CODE["RANGE"]))
+    assert {kind for kind, _ in expected} == {"start", "refused"}
+    assert [(event[0], event[4] if event[0] == "start" else event[1]) for event in events] == expected

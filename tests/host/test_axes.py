@@ -28,6 +28,16 @@ from models.registers import RATE_ONE
 
 CLOCK = 33_000_000
 ROUNDING = math.sqrt(2) / 2
+# docs/axes.md: a precise helix by area is within this many steps of the ideal helix at the same angle
+HELIX_PER_ANGLE = 0.75
+
+
+def swept_area(command):
+    """Twice the area the arc of ``command`` sweeps about its centre: |u dv - v du| summed over the
+    points of the two-axis model's path (the AREA the card needs)."""
+    plain = ArcCommand(command.xs, command.ys, command.xe, command.ye, command.ccw, command.variant)
+    points = iterate(plain).points()
+    return sum(abs(a[0] * (b[1] - a[1]) - a[1] * (b[0] - a[0])) for a, b in zip(points, points[1:]))
 
 
 def close(a, b, tol=1e-9):
@@ -140,16 +150,14 @@ def test_a_helical_bore_plans_to_helical_arcs_that_end_on_the_drawing():
     moves = model_path(planned, 3)
     helical = [c for _, c, _ in moves if isinstance(c, ArcCommand) and c.helix]
     assert helical and all(c.plane == (0, 1) and c.helix_axes == (2,) for c in helical)
-    for command in helical:  # ITERATIONS is the arc's count in the two-axis model
-        plain = ArcCommand(command.xs, command.ys, command.xe, command.ye, command.ccw, command.variant)
-        assert command.iterations == len(iterate(plain).steps)
+    for command in helical:  # AREA is the area the arc sweeps
+        assert command.area == swept_area(command)
     assert sum(c.helix[2] for c in helical) == -300  # three turns down 3 mm, the flat turn none
     assert moves[-1][2][-1] == (200, 0, -300) == planned.end
     result = check(planned)
     # radially half a step and the rounding onto the lattice; along Z the helix's own bound
-    # (docs/axes.md: 0.5 + 2.5 |h| / K) and the rounding of the pieces' ends
-    rise = max(abs(c.helix[2]) / c.iterations for c in helical)
-    assert result.max_deviation_steps <= math.hypot(0.5 + ROUNDING, 1.0 + 2.5 * rise)
+    # (docs/axes.md) and the rounding of the pieces' ends onto the lattice
+    assert result.max_deviation_steps <= math.hypot(0.5 + ROUNDING, HELIX_PER_ANGLE + 0.5)
 
 
 @pytest.mark.parametrize("program, header_bits", [
@@ -206,14 +214,22 @@ def test_an_xy_program_plans_the_same_words_for_every_card():
         assert plan(parse(program), Machine(steps_per_mm=(200.0,) * axes)).words() == words
 
 
-def test_a_helix_steeper_than_the_arcs_iterations_becomes_3d_lines():
-    # radius 1 mm, 20 mm up in one turn: the Z axis would need more steps than the arc has iterations
+@pytest.mark.parametrize("rise_mm", [20, 5])
+def test_a_helix_steeper_than_the_card_steps_becomes_3d_lines(rise_mm):
+    # radius 1 mm, 20 mm up in one turn: the Z axis would need more steps than the arc has iterations;
+    # 5 mm: 1,000 steps, fewer than its 1,264 iterations but more than W / max w = 888 allows (|h| max w > W)
     machine = Machine(steps_per_mm=(200.0,) * 3)
-    planned = plan(parse("G0 X1\nG3 X1 Y0 Z20 I-1 J0 F300\n"), machine)
+    planned = plan(parse(f"G0 X1\nG3 X1 Y0 Z{rise_mm} I-1 J0 F300\n"), machine)
     moves = model_path(planned, 3)
-    assert all(not isinstance(c, ArcCommand) or not c.helix or max(map(abs, c.helix)) <= c.iterations
-               for _, c, _ in moves)
-    assert moves[-1][2][-1] == (200, 0, 4000)
+    helical = [c for _, c, _ in moves if isinstance(c, ArcCommand) and c.helix]
+    # the card's at-most-one-step rule, from the path's own sweeps: |h| times the largest sweep <= W
+    for command in helical:
+        plain = iterate(ArcCommand(command.xs, command.ys, command.xe, command.ye, command.ccw, command.variant))
+        points = plain.points()
+        largest = max(abs(a[0] * (b[1] - a[1]) - a[1] * (b[0] - a[0])) for a, b in zip(points, points[1:]))
+        assert max(map(abs, command.helix)) * largest <= command.area == swept_area(command)
+    assert len(helical) < len(moves)
+    assert moves[-1][2][-1] == (200, 0, 200 * rise_mm)
     # the chords' sagitta, half a step of the DDA and the rounding of their ends onto the lattice
     assert check(planned).max_deviation_mm <= machine.chord_tolerance + (0.5 + math.sqrt(3) / 2) / 200
 

@@ -72,13 +72,14 @@ MAJOR = regmap.VERSION >> 8
 
 
 # a card of another major version, newer or older (1.3: before a stop cleared
-# MACHINE_CONTROL.DRIVE_ENABLE), is refused
+# MACHINE_CONTROL.DRIVE_ENABLE; 2.4: before AREA), is refused
 @pytest.mark.parametrize("id_word, text", [
     (0x12340101, "not a DDA card"),
     (regmap.ID_MAGIC << 16 | (MAJOR + 1) << 8 | 1, f"register map {MAJOR + 1}.1; this host software speaks {MAJOR}.x"),
     (regmap.ID_MAGIC << 16 | 0x0103, f"register map 1.3; this host software speaks {MAJOR}.x"),
     (regmap.ID_MAGIC << 16 | 0x0100, f"register map 1.0; this host software speaks {MAJOR}.x"),
-    (regmap.ID_MAGIC << 16 | 0x0200, "register map 2.0 lacks what 2.1 added"),   # no STEP_SPACE: configure writes it
+    # 2.4: a helical ARC's ITERATIONS where 3.0 sends AREA_LO, AREA_HI
+    (regmap.ID_MAGIC << 16 | 0x0204, f"register map 2.4; this host software speaks {MAJOR}.x"),
 ])
 def test_identification_refuses_other_cards_and_versions(id_word, text):
     with pytest.raises(IdentityError, match=text):

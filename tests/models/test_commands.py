@@ -34,17 +34,19 @@ def u32(value):
     (AxesLineCommand((5, 0, -2)), [LINE | 0b101 << 20, 5, u32(-2)]),
     (AxesLineCommand((0, 0, 0, 9, 0, -1), blend=True), [LINE | BLEND | 0b101000 << 20, 9, u32(-1)]),
     (ArcCommand(-4, 3, 3, -4, ccw=False, plane=(2, 0)), [ARC | 0b110 | 2 << 13, u32(-4), 3, 3, u32(-4)]),
-    (ArcCommand(6, 8, 6, 8, plane=(1, 2), helix=(-40, 0, 0, 0, 7), iterations=60),
-     [ARC | 0b111 | 1 << 13 | 2 << 17 | 0b10001 << 20, 6, 8, 6, 8, 60, u32(-40), 7]),
-    (ArcCommand(6, 8, 6, 8, helix=(0, 0, 12), iterations=60), [ARC | 0b111 | 0b100 << 20, 6, 8, 6, 8, 60, 12]),
+    (ArcCommand(6, 8, 6, 8, plane=(1, 2), helix=(-40, 0, 0, 0, 7), area=60),
+     [ARC | 0b111 | 1 << 13 | 2 << 17 | 0b10001 << 20, 6, 8, 6, 8, 60, 0, u32(-40), 7]),
+    # AREA in two words: bits 31:0, then the bits above
+    (ArcCommand(6, 8, 6, 8, helix=(0, 0, 12), area=0x1_2345_6789_ABCD),
+     [ARC | 0b111 | 0b100 << 20, 6, 8, 6, 8, 0x6789_ABCD, 0x1_2345, 12]),
     (PulseCommand((0, 0, 3, 0, 0, 2)), [PULSE | 0b100100 << 20, 3, 2]),
 ])
 def test_words_of_both_forms(command, words):
     assert command_words(command) == words
 
 
-def test_a_helix_without_its_iterations_is_refused():
-    with pytest.raises(ValueError, match="ITERATIONS"):
+def test_a_helix_without_its_area_is_refused():
+    with pytest.raises(ValueError, match="AREA"):
         command_words(ArcCommand(6, 8, 6, 8, helix=(0, 0, 12)))
 
 
@@ -60,7 +62,7 @@ def random_command(rng):
         helix = tuple(0 if axis in (u, v) else s for axis, s in enumerate(steps))
         return ArcCommand(*(rng.randint(-999, 999) for _ in range(4)), rng.random() < 0.5, rng.randrange(4),
                           rng.randrange(32), rng.randrange(32), rng.random() < 0.5, (u, v), helix,
-                          rng.randrange(1, 1 << 32) if any(helix) else None)
+                          rng.randrange(1, 1 << 49) if any(helix) else None)
     if kind == 3:
         return PulseCommand(tuple(steps))
     if kind == 4:
@@ -85,7 +87,7 @@ def same_meaning(a, b):
     if isinstance(a, ArcCommand):
         helix = trimmed(a.helix) if any(a.helix) else ()
         return b == ArcCommand(a.xs, a.ys, a.xe, a.ye, a.ccw, a.variant, a.lambda_shift, a.acc_bits, a.blend,
-                               a.plane, helix, a.iterations if helix else None)
+                               a.plane, helix, a.area if helix else None)
     return a == b
 
 
@@ -113,12 +115,13 @@ def test_line_operands_follow_the_axes_field(header, names):
 
 def test_arc_operands_follow_the_helix_field():
     assert isa.operand_names("ARC", {"U_AXIS": 2}) == ("XS", "YS", "XE", "YE")
-    assert isa.operand_names("ARC", {"HELIX": 0b1100}) == ("XS", "YS", "XE", "YE", "ITERATIONS", "DZ", "DA")
+    assert isa.operand_names("ARC", {"HELIX": 0b1100}) == ("XS", "YS", "XE", "YE", "AREA_LO", "AREA_HI", "DZ",
+                                                             "DA")
 
 
 def test_the_longest_command_and_the_two_axis_table_the_card_in_gen_decodes():
-    # an arc with a helix on the four axes outside its plane: header, four, ITERATIONS, four
-    assert isa.MAX_WORDS == 10 and isa.max_words(isa.BY_NAME["ARC"]) == 10
+    # an arc with a helix on the four axes outside its plane: header, four, AREA_LO, AREA_HI, four
+    assert isa.MAX_WORDS == 11 and isa.max_words(isa.BY_NAME["ARC"]) == 11
     assert isa.MAX_OPERANDS == 4  # the two-axis form: what rtl/regs/sequencer.py holds
     assert isa.BY_NAME["LINE"].header_mask == 0xF << 28 | BLEND
     assert isa.BY_NAME["LINE"].axis_header_mask == 0xF << 28 | BLEND | 0x3F << 20
@@ -128,7 +131,7 @@ def test_the_longest_command_and_the_two_axis_table_the_card_in_gen_decodes():
     ([0xF << 28], "BAD_OPCODE"),
     ([LINE | 1 << 26, 1, 2], "RESERVED_BITS"),
     ([LINE | 0b111 << 20, 1, 2], "needs 3 operands"),
-    ([ARC | 0b100 << 20, 1, 0, 0, 1, 5], "needs 6 operands"),
+    ([ARC | 0b100 << 20, 1, 0, 0, 1, 5, 0], "needs 7 operands"),
 ])
 def test_a_stream_that_cannot_be_framed_is_refused(words, message):
     with pytest.raises(ValueError, match=message):

@@ -1,8 +1,8 @@
 """The N-axis golden model (``models/dda_axes.py``) against facts that do not come from it.
 
-Golden facts: the ideal straight line ``k d_i / T`` and the ideal helix (at the
-same parameter ``h k / K`` and at the same angle ``h theta / Theta``), checked
-with exact integer arithmetic where the promise is exact; the two-axis golden
+Golden facts: the ideal straight line ``k d_i / T``, checked with exact
+integer arithmetic (the helix, which follows the area its arc sweeps, is
+``tests/models/test_helix_area.py``'s); the two-axis golden
 model (``LineIterator``, ``iterate``), which an N-axis move must repeat on its
 plane; the directions of G17, G18 and G19 as RS274/NGC defines them (normals
 +Z, +Y, +X, written out here, not read from ``models.axes``).
@@ -13,19 +13,13 @@ from dataclasses import replace
 
 import pytest
 
-from models.dda_axes import (AxesStep, MoveIterator, arc_iterations, check_move, iterate_axes, iterations_left_bound,
-                             with_iterations)
-from models.dda_model import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, LineIterator, iterate
+from models.dda_axes import AxesStep, MoveIterator, arc_iterations, check_move, iterate_axes, iterations_left_bound, with_area
+from models.dda_model import PRECISE, TRADITIONAL, LineIterator, iterate
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand
-from tests.models.random_arcs import random_arc
 
 # RS274/NGC: G17 is the XY plane seen from +Z, G18 the ZX plane seen from +Y, G19 the YZ plane seen from +X;
 # G3 turns counter-clockwise as seen from there.
 PLANE_CASES = {"G17": ((0, 1), (0, 0, 1)), "G18": ((2, 0), (0, 1, 0)), "G19": ((1, 2), (1, 0, 0))}
-# docs/axes.md: a precise arc's iterations lag its angle by at most this many iterations
-# (|k / K - theta_k / Theta| * K; 2.45 the most measured over 840 random helices)
-PRECISE_LAG = 2.5
-GENTLE = 5  # a helix rising at most K / GENTLE steps is within one step of the ideal one at the same angle
 
 
 def random_line(rng, axes, largest):
@@ -86,95 +80,6 @@ def test_an_xy_line_steps_as_the_two_axis_line_iterator_on_every_card(seed):
                 assert not any(any(s.steps[2:]) for s in steps)
 
 
-def ideal_sweep(command):
-    if (command.xs, command.ys) == (command.xe, command.ye):
-        return math.tau
-    turn = math.atan2(command.ye, command.xe) - math.atan2(command.ys, command.xs)
-    return (turn if command.ccw else -turn) % math.tau or math.tau
-
-
-def random_helix(rng, plane, ccw, variant=PRECISE, radius=None, steep=None):
-    """A seeded random helical arc about the origin in ``plane``, the one other axis of X, Y, Z rising."""
-    other = 3 - sum(plane)
-    command = random_arc(rng, plane, ccw, variant, radius)
-    total = len(iterate(command).steps)  # K, from the two-axis golden model
-    rise = max(1, round(total * (steep if steep is not None else rng.random())))
-    helix = [0, 0, 0]
-    helix[other] = rise * rng.choice([1, -1])
-    return replace(command, helix=tuple(helix), iterations=total), other
-
-
-def helix_check(command, other):
-    """(per-iteration, per-angle deviation, lag in iterations) of ``command``'s helix axis,
-    the largest at its arc steps; asserts what is exact."""
-    path = iterate_axes(command)
-    plain = iterate(ArcCommand(command.xs, command.ys, command.xe, command.ye, command.ccw, command.variant,
-                               command.lambda_shift, command.acc_bits))
-    u, v = command.plane
-    rise, total = command.helix[other], command.iterations
-    assert len(path.steps) == total == len(plain.steps)  # the helix ends with the arc
-    assert [(s.steps[u], s.steps[v], s.dirs[u], s.dirs[v]) for s in path.steps] == \
-        [(s.step_x, s.step_y, s.dir_x, s.dir_y) for s in plain.steps]  # the arc runs unchanged
-    positions = path.positions()
-    assert positions[-1][other] == rise
-    theta, sense = ideal_sweep(command), 1 if command.ccw else -1
-    turned, last, worst = 0.0, math.atan2(command.ys, command.xs), [0.0, 0.0, 0.0]
-    for k, point in enumerate(positions):
-        assert 2 * abs(point[other] * total - k * rise) <= total  # within half a step of h k / K: exact
-        if k and (point[u], point[v]) != (positions[k - 1][u], positions[k - 1][v]):
-            angle = math.atan2(point[v], point[u])
-            turned += math.remainder(angle - last, math.tau) * sense
-            last = angle
-            worst = [max(worst[0], abs(point[other] - rise * k / total)),
-                     max(worst[1], abs(point[other] - rise * turned / theta)),
-                     max(worst[2], abs(k / total - turned / theta) * total)]
-    return worst
-
-
-@pytest.mark.parametrize("name", sorted(PLANE_CASES))
-@pytest.mark.parametrize("ccw", [True, False])
-def test_precise_helix_follows_the_arc_within_the_documented_bound(name, ccw):
-    rng = random.Random(f"{name}{ccw}")
-    plane, _ = PLANE_CASES[name]
-    for steep in (None, 1.0, 1 / GENTLE):
-        command, other = random_helix(rng, plane, ccw, steep=steep)
-        per_iteration, per_angle, lag = helix_check(command, other)
-        rise = abs(command.helix[other])
-        assert per_iteration <= 0.5
-        assert lag <= PRECISE_LAG
-        assert per_angle <= 0.5 + PRECISE_LAG * rise / command.iterations + 1e-9
-        if rise * GENTLE <= command.iterations:
-            assert per_angle <= 1.0
-
-
-@pytest.mark.parametrize("variant", [TRADITIONAL, WEIGHTED, IMPROVED])
-def test_every_variant_drives_the_helix_within_half_a_step_of_its_iterations(variant):
-    rng = random.Random(variant)
-    for name, (plane, _) in sorted(PLANE_CASES.items()):
-        command, other = random_helix(rng, plane, rng.random() < 0.5, variant)
-        per_iteration, _, _ = helix_check(command, other)
-        assert per_iteration <= 0.5
-
-
-@pytest.mark.slow(reason="210 random helices in every plane, direction and variant: the precise mode's "
-                        "120 of radius 20..5,000, the paper's variants' (up to 16 times the iterations) 30 each "
-                        "of 20..1,000")
-@pytest.mark.parametrize("variant", [TRADITIONAL, WEIGHTED, IMPROVED, PRECISE])
-def test_helix_sweep(variant):
-    rng = random.Random(1000 + variant)
-    count, largest = (20, 5000) if variant == PRECISE else (5, 1000)
-    for name, (plane, _) in sorted(PLANE_CASES.items()):
-        for ccw in (True, False):
-            for _ in range(count):
-                radius = math.exp(rng.uniform(math.log(20), math.log(largest)))
-                command, other = random_helix(rng, plane, ccw, variant, radius=radius)
-                per_iteration, per_angle, lag = helix_check(command, other)
-                assert per_iteration <= 0.5
-                if variant == PRECISE:
-                    assert lag <= PRECISE_LAG
-                    assert per_angle <= 0.5 + PRECISE_LAG * abs(command.helix[other]) / command.iterations
-
-
 def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
@@ -184,7 +89,7 @@ def cross(a, b):
 @pytest.mark.parametrize("variant", [TRADITIONAL, PRECISE])
 def test_arcs_turn_the_way_rs274ngc_says_in_every_plane(name, ccw, variant):
     plane, normal = PLANE_CASES[name]
-    command = with_iterations(ArcCommand(40, -9, -30, 28, ccw, variant, plane=plane, helix=(0, 0, 0, 25)))
+    command = with_area(ArcCommand(40, -9, -30, 28, ccw, variant, plane=plane, helix=(0, 0, 0, 25)))
     points = [p[:3] for p in iterate_axes(command, 4).points()]  # X, Y, Z relative to the centre
     turns = [sum(n * c for n, c in zip(normal, cross(a, b))) for a, b in zip(points, points[1:])]
     sense = 1 if ccw else -1
@@ -200,10 +105,10 @@ def test_arc_iterations_is_the_two_axis_models_count():
 
 @pytest.mark.parametrize("command", [
     AxesLineCommand((9, -4, 17, 0, -3)), AxesLineCommand((0, 0, 0, 0, 0, -12)), LineCommand(-6, 2),
-    ArcCommand(50, 0, 0, 50, plane=(2, 0), helix=(0, 30), iterations=79),
-    ArcCommand(50, 0, 0, 50, plane=(2, 0), helix=(0, 30), iterations=120),  # ITERATIONS above K
-    ArcCommand(50, 0, 0, 50, plane=(2, 0), helix=(0, 30), iterations=40),   # below K
-    ArcCommand(-20, 21, -20, 21, ccw=False, plane=(1, 2), helix=(300, 0, 0, -11), iterations=300),
+    with_area(ArcCommand(50, 0, 0, 50, plane=(2, 0), helix=(0, 30))),
+    ArcCommand(50, 0, 0, 50, plane=(2, 0), helix=(0, 30), area=8_000),   # AREA above W (4,9xx)
+    ArcCommand(50, 0, 0, 50, plane=(2, 0), helix=(0, 30), area=2_000),   # below W
+    ArcCommand(-20, 21, -20, 21, ccw=False, plane=(1, 2), helix=(300, 0, 0, -11), area=5_000),
 ])
 def test_iterations_left_bound_never_overstates_and_every_axis_ends_on_its_end(command):
     iterator = MoveIterator(command, 6)
@@ -236,11 +141,11 @@ def test_a_step_reports_every_axis():
     (AxesLineCommand((1 << 9, 0, 0)), 3, "DX = 512 does not fit 10-bit"),
     (ArcCommand(5, 0, 0, 5, plane=(2, 2)), 3, "not two different axes"),
     (ArcCommand(5, 0, 0, 5, plane=(0, 3)), 3, "not two different axes"),
-    (ArcCommand(5, 0, 0, 5, plane=(2, 0), helix=(3, 0, 0), iterations=9), 3, "is an axis of the plane"),
-    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 3)), 3, "needs ITERATIONS"),
-    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 3), iterations=0), 3, "needs ITERATIONS"),
-    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 10), iterations=9), 3, "at most one step an iteration"),
-    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 0, 2), iterations=9), 3, "axis A is not on a card with 3 axes"),
+    (ArcCommand(5, 0, 0, 5, plane=(2, 0), helix=(3, 0, 0), area=40), 3, "is an axis of the plane"),
+    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 3)), 3, "needs its AREA"),
+    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 3), area=0), 3, "needs its AREA"),
+    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 3), area=1 << 21), 3, "needs its AREA, 1..2097151"),   # 21 bits on 10
+    (ArcCommand(5, 0, 0, 5, helix=(0, 0, 0, 2), area=40), 3, "axis A is not on a card with 3 axes"),
 ])
 def test_the_cards_range_rules(command, axes, message):
     with pytest.raises(ValueError, match=message):

@@ -15,9 +15,9 @@ from fractions import Fraction
 
 import pytest
 
-from models.dda_axes import check_move, iterate_axes
+from models.dda_axes import MoveIterator, check_move, iterate_axes
 from models.dda_model import IMPROVED, PRECISE, TRADITIONAL, WEIGHTED, iterate, plan_arc
-from models.dda_plan import ArcCommand, AxesLineCommand
+from models.dda_plan import ArcCommand
 from models.helix_area import arc_area, area_width
 from tests.models.random_arcs import random_arc
 
@@ -56,7 +56,7 @@ def check_helix_by_area(command, other, area):
     """The largest deviation of the helix axis from the ideal helix at the same angle, over the
     arc's steps; asserts the exact facts: the arc unchanged, the floor formula at every
     iteration (so never a step lost or two in one iteration), the end with the arc on the end."""
-    path = iterate_axes(command, helix_area=area)
+    path = iterate_axes(replace(command, area=area))
     plain = iterate(replace(command, helix=(), plane=(0, 1)))
     u, v = command.plane
     assert [(s.steps[u], s.steps[v], s.dirs[u], s.dirs[v]) for s in path.steps] == \
@@ -137,19 +137,18 @@ def test_a_wrong_area_still_ends_every_axis_on_its_end_point(factor):
     area = arc_area(command)
     command, other = with_rise(command, area.total // area.largest)
     wrong = int(area.total * factor)
-    path = iterate_axes(command, helix_area=wrong)
+    path = iterate_axes(replace(command, area=wrong))
     end = path.end
     assert (end[2], end[0], end[other]) == (command.xe, command.ye, command.helix[other])
     # too large: the axis lags and ends after the arc, a step every iteration
     assert len(path.steps) >= area.iterations and (factor < 1 or len(path.steps) > area.iterations)
 
 
-@pytest.mark.parametrize("area, message", [(0, "needs AREA"), (1 << area_width(10), "needs AREA"),
-                                           (None, "needs ITERATIONS")])
-def test_the_range_rules_of_a_helix_by_area(area, message):
-    with pytest.raises(ValueError, match=message):
-        check_move(ArcCommand(5, 0, 0, 5, helix=(0, 0, 3)), 3, coord_width=10, helix_area=area)
-    check_move(ArcCommand(5, 0, 0, 5, helix=(0, 0, 3)), 3, coord_width=10, helix_area=(1 << area_width(10)) - 1)
+@pytest.mark.parametrize("area", [0, 1 << area_width(10), None])
+def test_the_range_rules_of_a_helix_by_area(area):
+    with pytest.raises(ValueError, match="needs its AREA"):
+        check_move(ArcCommand(5, 0, 0, 5, helix=(0, 0, 3), area=area), 3, coord_width=10)
+    check_move(ArcCommand(5, 0, 0, 5, helix=(0, 0, 3), area=(1 << area_width(10)) - 1), 3, coord_width=10)
 
 
 @pytest.mark.parametrize("variant", [TRADITIONAL, WEIGHTED, IMPROVED, PRECISE])
@@ -179,7 +178,7 @@ def test_every_helix_axis_of_a_move_follows_the_area_on_its_own(seed):
     area = arc_area(command)
     steepest = area.total // area.largest
     helix = (0, rng.randint(-steepest, steepest), 0, steepest, -rng.randint(0, steepest), -steepest)
-    positions = iterate_axes(replace(command, helix=helix), 6, helix_area=area.total).positions()
+    positions = iterate_axes(replace(command, helix=helix, area=area.total), 6).positions()
     for point, swept in zip(positions, plane_sweeps(command, positions)):
         for axis in (1, 3, 4, 5):
             rise = helix[axis]
@@ -187,6 +186,15 @@ def test_every_helix_axis_of_a_move_follows_the_area_on_its_own(seed):
     assert positions[-1][1] == helix[1] and positions[-1][3:] == helix[3:]
 
 
-def test_a_line_has_no_helix_area():
-    with pytest.raises(ValueError, match="helix_area"):
-        iterate_axes(AxesLineCommand((3, 1, 2)), helix_area=10)
+@pytest.mark.parametrize("rise", [25, 31])
+def test_a_remainder_far_behind_saturates_and_the_axis_still_ends(rise):
+    # AREA 1 on a 6-bit card: the axis leads, stepping on every iteration while its remainder D falls
+    # by |h| w - 1 an iteration, until it saturates at -2^13 (docs/axes.md)
+    command = ArcCommand(20, 0, 20, 0, helix=(0, 0, rise), area=1)   # a full circle
+    iterator = MoveIterator(command, 3, coord_width=6)
+    floor, lowest, made = -(1 << area_width(6)), 0, 0
+    while not iterator.finished:
+        made += iterator.step().steps[2]
+        lowest = min(lowest, iterator.follower.remainder[2])
+        assert lowest >= floor
+    assert made == rise and lowest == floor
