@@ -10,13 +10,16 @@ figures):
   its end point on iteration T;
 * helical arcs (seeded random: radius 20..5,000 steps, log-uniform; a quarter
   to a full turn; rise up to K steps; every variant, G17/G18/G19, both
-  directions): at every arc step (every iteration that moves the plane's
-  point), the largest deviation of a helix axis from the ideal helix at the
-  same parameter ``h k / K`` (per iteration) and at the same angle
+  directions) by the ITERATIONS rule the card ran before register map 3.0
+  (the helix axis a line DDA over the arc's K iterations:
+  ``floor((K // 2 + k |h|) / K)`` after iteration k, computed here, no
+  longer in the model): at every arc step (every iteration that moves the
+  plane's point), the largest deviation of a helix axis from the ideal helix
+  at the same parameter ``h k / K`` (per iteration) and at the same angle
   ``h theta_k / Theta`` (per angle), and the lag ``|k / K - theta_k / Theta| * K``
   (iterations); the per-angle figure also for the helices whose rise is at
   most K / 5 (about 0.2 step an iteration: a pitch angle up to about 11 degrees);
-* the same helices by swept area (``models/helix_area.py``, AREA W the arc's
+* the same helices by swept area, the card's rule (``models/helix_area.py``, AREA W the arc's
   ``arc_area``): at every arc step the largest deviation from ``h A_k / W``
   (per area, A_k the area swept so far), from the ideal helix at the same
   angle (per angle), and the 3-D distance from the ideal helix's point at
@@ -33,7 +36,7 @@ from dataclasses import replace
 from fractions import Fraction
 
 from models.axes import AXIS_NAMES, PLANES
-from models.dda_axes import iterate_axes, with_iterations
+from models.dda_axes import iterate_axes
 from models.dda_build import IMPROVED, VARIANT_NAMES, WEIGHTED
 from models.dda_plan import ArcCommand, AxesLineCommand, plan_arc
 from models.helix_area import arc_area
@@ -64,7 +67,7 @@ def line_deviation(deltas):
 
 
 def random_helix(rng, variant, plane, ccw, coord_width=24):
-    """A seeded random helical arc the model accepts (ITERATIONS filled in)."""
+    """A seeded random helical arc the model accepts (AREA filled in), rising up to its K."""
     helix_axis = next(axis for axis in range(3) if axis not in plane)
     while True:
         radius = math.exp(rng.uniform(math.log(20), math.log(5000)))
@@ -78,15 +81,15 @@ def random_helix(rng, variant, plane, ccw, coord_width=24):
             plan_arc(command, coord_width)
         except ValueError:
             continue
-        iterations = with_iterations(replace_helix(command, helix_axis, 1), coord_width).iterations
-        rise = rng.choice([1, -1]) * max(1, round(iterations * rng.choice([rng.random(), rng.random() / GENTLE])))
-        return replace_helix(command, helix_axis, rise, iterations)
+        area = arc_area(command, coord_width)
+        rise = rng.choice([1, -1]) * max(1, round(area.iterations * rng.choice([rng.random(), rng.random() / GENTLE])))
+        return replace_helix(command, helix_axis, rise, area.total)
 
 
-def replace_helix(command, axis, rise, iterations=None):
+def replace_helix(command, axis, rise, area):
     helix = [0, 0, 0]
     helix[axis] = rise
-    return replace(command, helix=tuple(helix), iterations=iterations)
+    return replace(command, helix=tuple(helix), area=area)
 
 
 def sweep(command):
@@ -98,16 +101,20 @@ def sweep(command):
 
 
 def helix_deviation(command):
-    """(per iteration, per angle, lag in iterations): the largest over the arc's steps."""
-    path = iterate_axes(command)
-    u, v = command.plane
+    """(per iteration, per angle, lag in iterations) of the ITERATIONS rule: the largest over the arc's steps."""
     axis = command.helix_axes[0]
-    rise, total, theta = command.helix[axis], command.iterations, sweep(command)
+    rise, theta = command.helix[axis], sweep(command)
+    plain = iterate_axes(replace(command, helix=(), area=None), 3)
+    total, sign = len(plain.steps), 1 if rise >= 0 else -1
+    # the ITERATIONS rule's helix axis after iteration k, with the arc's own K
+    positions = [tuple(sign * ((total // 2 + k * abs(rise)) // total) if a == axis else c for a, c in enumerate(p))
+                 for k, p in enumerate(plain.positions())]
+    u, v = command.plane
     sense = 1 if command.ccw else -1
     turned, last = 0.0, math.atan2(command.ys, command.xs)
     per_iteration = per_angle = lag = 0.0
-    previous = path.start
-    for k, point in enumerate(path.positions()[1:], start=1):
+    previous = positions[0]
+    for k, point in enumerate(positions[1:], start=1):
         if (point[u], point[v]) == (previous[u], previous[v]):
             previous = point
             continue
@@ -126,7 +133,7 @@ def area_deviation(command):
     """(per area, per angle, 3-D, fits, steepest / K) of ``command``'s helix by swept area: the largest over
     its arc steps; steepest: the largest rise the host's rule takes, W // max w."""
     area = arc_area(command)
-    path = iterate_axes(command, helix_area=area.total)
+    path = iterate_axes(command)
     u, v = command.plane
     axis = command.helix_axes[0]
     rise, theta, sense = command.helix[axis], sweep(command), 1 if command.ccw else -1
@@ -205,7 +212,7 @@ def main(argv=None):
                 rows = []
                 for _ in range(options.helices):
                     command = random_helix(rng, variant, plane, ccw)
-                    gentle = abs(command.helix[command.helix_axes[0]]) * GENTLE <= command.iterations
+                    gentle = abs(command.helix[command.helix_axes[0]]) * GENTLE <= arc_area(command).iterations
                     rows.append((*helix_deviation(command), gentle))
                     by_area.append((variant, code, ccw, area_deviation(command) + (rows[-1][1],)))
                 figures = (max(r[0] for r in rows), max(r[1] for r in rows),

@@ -2,8 +2,9 @@
 
 A seeded set of helices (the precise mode; G17, G18 and G19, both
 directions; radius 20 to ``--radius`` steps, log-uniform; a quarter to a
-full turn; the rise up to K steps, a third of them gentle, up to K / 5;
-ITERATIONS the arc's K, ``models.dda_axes.with_iterations``) is chained into
+full turn; the rise up to K steps, a third of them gentle, up to K / 5, those
+the host's rule takes, ``|h| max w <= W``, kept; AREA the arc's W,
+``models.helix_area.arc_area``) is chained into
 one stream and run on the simulated three-axis card (``--card``, Verilator by
 default: ``sim/card/card_e2e.py``), the STEP/DIR pins captured.  The pins'
 points must be the golden model's (``models.dda_axes.iterate_axes``,
@@ -25,10 +26,11 @@ import random
 
 from models.axes import PLANES
 from models.dda_axes import iterate_axes, move_start
+from models.helix_area import arc_area
 from sim.card.card_bench import axes_path
 from sim.card.card_e2e import motion_scenario, run_card
 
-from bench.axes_figures import GENTLE, random_helix, sweep
+from bench.axes_figures import random_helix, sweep
 
 AXES = 3
 
@@ -41,9 +43,16 @@ def helices(seed, per_case, radius):
         for ccw in (True, False):
             while sum(1 for h in chosen if h.plane == plane and h.ccw == ccw) < per_case:
                 command = random_helix(rng, 3, plane, ccw)
-                if math.hypot(command.xs, command.ys) <= radius:
+                swept = arc_area(command)
+                if math.hypot(command.xs, command.ys) <= radius and swept.fits(max(map(abs, command.helix))):
                     chosen.append(command)
     return chosen
+
+
+def steepest(command):
+    """The steepest rise the host's rule takes on ``command``'s arc: W // max w."""
+    swept = arc_area(command)
+    return swept.total // swept.largest
 
 
 def deviations(command, points):
@@ -89,7 +98,7 @@ def main(argv=None):
     pins = log.axis_points(AXES)
     print(f"{len(commands)} helices (precise; G17, G18, G19 both ways; radius <= {options.radius}), "
           f"{len(model) - 1} points; the pins ({options.card}) equal the model's: {pins == model}")
-    print(f"{'source':<7} {'plane':<6} {'dir':<4} {'radius':>7} {'rise':>6} {'K':>6} {'axial':>7} {'radial':>7} "
+    print(f"{'source':<7} {'plane':<6} {'dir':<4} {'radius':>7} {'rise':>6} {'W/mw':>6} {'axial':>7} {'radial':>7} "
           f"{'3-D':>7}")
     for name, path in (("model", model), ("pins", pins)):
         overall = [0.0, 0.0, 0.0]
@@ -99,11 +108,11 @@ def main(argv=None):
             plane = next(code for code, p in PLANES.items() if p == command.plane)
             rise = command.helix[command.helix_axes[0]]
             print(f"{name:<7} G{plane:<5} {'ccw' if command.ccw else 'cw':<4} "
-                  f"{math.hypot(command.xs, command.ys):7.1f} {rise:6d} {command.iterations:6d} "
+                  f"{math.hypot(command.xs, command.ys):7.1f} {rise:6d} {steepest(command):6d} "
                   f"{figures[0]:7.3f} {figures[1]:7.3f} {figures[2]:7.3f}")
         print(f"{name:<7} {'all':<31} {overall[0]:7.3f} {overall[1]:7.3f} {overall[2]:7.3f}  (steps)")
-    print(f"\naxial: |z - h theta / Theta|; radial: | |(u, v)| - R |; 3-D: both; gentle (rise <= K / {GENTLE}) "
-          f"helices stay within one step axially (docs/axes.md)")
+    print("\naxial: |z - h theta / Theta|; radial: | |(u, v)| - R |; 3-D: both; W/mw: the steepest rise the "
+          "host's rule takes, W // max w (docs/axes.md)")
     return 0 if pins == model else 1
 
 

@@ -12,6 +12,7 @@ from myhdl import Signal, block, delay, instance, intbv
 
 from models import instructions as isa
 from rtl.interfaces import CommandHeader
+from rtl.regs.axis_operands import AXIS_SLOT
 from rtl.regs.command_header import command_header
 from rtl.regs.instruction_tables import OPERANDS_MAX
 
@@ -45,7 +46,7 @@ def _expected(word):
 @block
 def _bench(words, axes, seen):
     word = Signal(intbv(0)[32:])
-    header = CommandHeader(axes, 4 if axes == 2 else 5 + axes, OPERANDS_MAX)
+    header = CommandHeader(axes, 4 if axes == 2 else AXIS_SLOT + axes, OPERANDS_MAX)
     unit = command_header(word, header)
 
     @instance
