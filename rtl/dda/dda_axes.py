@@ -63,7 +63,7 @@ def dda_axes(clock, reset, cmd, axes_cmd, steps):
     for name in _SHARED:
         setattr(arc, name, getattr(cmd, name))
     line = LinearPort(axes, cmd.coord_width)
-    helix = HelixPort(line, arc.progress, cmd.xs, cmd.ys)
+    helix = HelixPort(line, arc.progress, cmd.xs, cmd.ys, axes_cmd.u, axes_cmd.v)
     moves = Signal(intbv(0, min=0, max=3))   # moves in the arc DDA: started and not ended
     line_steps, helix_steps = AxisPulses(axes), AxisPulses(axes)
     units = [dda_arc(clock, reset, arc, arc_steps),

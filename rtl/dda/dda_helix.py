@@ -25,7 +25,11 @@ def dda_helix(clock, reset, helix, steps):
     the clock after the ``advance`` it steps in, as the arc's own, with its
     direction).  Parameters: none; widths from ``helix``.
 
-    One channel per axis (``axis_x``, ...; the plane's two have |h| = 0).
+    ``axes - 2`` channels (``channel_0``, ...): channel k runs the k-th axis
+    outside the helix's plane (ascending), which is axis k, k + 1 or k + 2
+    (``_channel_axis``: the plane, ``helix.u``, ``helix.v``, is read with
+    ``build``, the running helix's at ``load``), so each channel picks its
+    |h| from three axes and each axis its step from three channels.
     The products' start values |h| |us|, |h| |vs| and their sum are built
     by shift and add over the start point's magnitudes, most significant
     bit first, in the ``coord_width`` clocks after ``build`` (an arc's
@@ -54,14 +58,29 @@ def dda_helix(clock, reset, helix, steps):
     area_run = Signal(intbv(0)[area_bits:])
     first_remainder = Signal(intbv(0)[area_bits:])
     pending, took_u, took_v, u_inward = (Signal(bool(0)) for _ in range(4))
-    moving = [Signal(bool(0)) for _ in range(axes)]
-    moving_any = ConcatSignal(*reversed(moving))   # bit i: axis i has steps left
+    count = axes - 2
+    moving = [Signal(bool(0)) for _ in range(count)]
+    moving_any = ConcatSignal(*reversed(moving)) if count > 1 else moving[0]   # bit k: channel k has steps left
     line, progress = helix.line, helix.progress
-    channels = [named(f"axis_{suffix}", _axis_helix(
-        clock, reset, helix, line.magnitude(axis), line.positive(axis), building, start_u(width - 1),
-        start_v(width - 1), first_remainder, area_run, pending, took_u, took_v, u_inward, steps.step(axis),
-        steps.dir(axis), moving[axis]))
-        for axis, suffix in enumerate(axis_suffixes(axes))]
+    rises = [Signal(intbv(0)[width:]) for _ in range(count)]
+    signs = [Signal(bool(0)) for _ in range(count)]
+    running = [Signal(intbv(0, min=0, max=3)) for _ in range(count)]   # the axis a channel runs: k + this
+    channel_steps = [Signal(bool(0)) for _ in range(count)]
+    channel_dirs = [Signal(bool(0)) for _ in range(count)]
+    units = []
+    for k in range(count):
+        units.append(named(f"pick_{k}", _channel_axis(
+            clock, reset, helix, k, line.magnitude(k), line.magnitude(k + 1), line.magnitude(k + 2),
+            line.positive(k), line.positive(k + 1), line.positive(k + 2), rises[k], signs[k], running[k])))
+        units.append(named(f"channel_{k}", _axis_helix(
+            clock, reset, helix, rises[k], signs[k], building, start_u(width - 1), start_v(width - 1),
+            first_remainder, area_run, pending, took_u, took_v, u_inward, channel_steps[k], channel_dirs[k],
+            moving[k])))
+    for axis, suffix in enumerate(axis_suffixes(axes)):
+        feeding = [k for k in range(max(0, axis - 2), min(axis, count - 1) + 1)]
+        units.append(named(f"route_{suffix}", _axis_route(
+            [(channel_steps[k], channel_dirs[k], running[k], axis - k) for k in feeding], steps.step(axis),
+            steps.dir(axis))))
 
     @always_comb
     def status():
@@ -93,7 +112,83 @@ def dda_helix(clock, reset, helix, steps):
         if helix.load:
             area_run.next = helix.area
 
-    return channels, status, start_point, iteration
+    return units, status, start_point, iteration
+
+
+@block
+def _channel_axis(clock, reset, helix, index, magnitude_0, magnitude_1, magnitude_2, positive_0, positive_1,
+                  positive_2, rise, sign, running):
+    """Which axis channel ``index`` runs: the ``index``-th outside the plane,
+    axis ``index`` + 0, 1 or 2.  At ``build`` it is found from the plane
+    (``helix.u``, ``helix.v``) and kept (``waiting``); ``rise`` and ``sign``
+    are that axis's |h| and direction (``magnitude_<n>``, ``positive_<n>``
+    of axis ``index`` + n), ``running`` the running helix's, taken at
+    ``load``."""
+    waiting = Signal(intbv(0, min=0, max=3))
+
+    @always_seq(clock.posedge, reset=reset)
+    def find():
+        low = helix.u
+        high = helix.v
+        if helix.v < helix.u:
+            low = helix.v
+            high = helix.u
+        if helix.build:
+            if index < low:
+                waiting.next = 0
+            elif index + 1 < high:
+                waiting.next = 1
+            else:
+                waiting.next = 2
+        if helix.load:
+            running.next = waiting
+
+    @always_comb
+    def pick():
+        rise.next = magnitude_0
+        sign.next = positive_0
+        if waiting == 1:
+            rise.next = magnitude_1
+            sign.next = positive_1
+        elif waiting == 2:
+            rise.next = magnitude_2
+            sign.next = positive_2
+
+    return find, pick
+
+
+@block
+def _axis_route(feeding, step, direction):
+    """An axis's step and direction from the channels that can run it, ``feeding``: one to three
+    (step, direction, the axis it runs as an offset from its own index, the offset that is this axis)."""
+    (step_0, dir_0, running_0, offset_0), = feeding[:1]
+    if len(feeding) == 1:
+        @always_comb
+        def route():
+            step.next = step_0 and running_0 == offset_0
+            direction.next = dir_0
+        return route
+    (step_1, dir_1, running_1, offset_1), = feeding[1:2]
+    if len(feeding) == 2:
+        @always_comb
+        def route_two():
+            step.next = (step_0 and running_0 == offset_0) or (step_1 and running_1 == offset_1)
+            direction.next = dir_1
+            if step_0 and running_0 == offset_0:
+                direction.next = dir_0
+        return route_two
+    (step_2, dir_2, running_2, offset_2), = feeding[2:]
+
+    @always_comb
+    def route_three():
+        step.next = ((step_0 and running_0 == offset_0) or (step_1 and running_1 == offset_1)
+                     or (step_2 and running_2 == offset_2))
+        direction.next = dir_2
+        if step_0 and running_0 == offset_0:
+            direction.next = dir_0
+        elif step_1 and running_1 == offset_1:
+            direction.next = dir_1
+    return route_three
 
 
 @block

@@ -341,8 +341,9 @@ class HelixPort:
     magnitudes and signs (a ``LinearPort``'s, read as each axis's |h| and
     direction), an arc's ``progress`` (``ArcProgress``) and, from the driver:
     ``build`` (one clock, with the arc's ``start``: take |``xs``|,
-    |``ys``|, the arc's start in its plane, and build the products of the
-    waiting helix from the magnitudes registered at that edge), ``area``
+    |``ys``|, the arc's start in its plane, and the plane ``u``, ``v``, and
+    build the products of the waiting helix from the magnitudes registered
+    at that edge), ``area``
     (the waiting helix's AREA W, ``area_width(coord_width)`` bits, held from
     the clock after ``build`` to its ``load``), ``load`` (one clock: the
     waiting helix becomes the running one), ``advance`` (one iteration),
@@ -351,11 +352,11 @@ class HelixPort:
     are complete: ``load`` may come) and ``following`` (an axis of the
     running helix has steps left)."""
 
-    def __init__(self, line, progress, xs, ys):
+    def __init__(self, line, progress, xs, ys, u, v):
         self.line, self.progress = line, progress
         self.axes = line.axes
         self.coord_width = len(xs)
-        self.xs, self.ys = xs, ys
+        self.xs, self.ys, self.u, self.v = xs, ys, u, v
         self.build, self.load, self.advance, self.alone = (Signal(bool(0)) for _ in range(4))
         self.area = Signal(intbv(0)[area_width(self.coord_width):])
         self.built, self.following = Signal(bool(1)), Signal(bool(0))
