@@ -207,6 +207,7 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
     pad = area_bits - product_bits
     wait_u, wait_v, wait_uv = (Signal(intbv(0)[product_bits:]) for _ in range(3))
     prod_u, prod_v, prod_uv = (Signal(intbv(0)[product_bits:]) for _ in range(3))
+    next_u, next_v, next_uv = (Signal(intbv(0)[product_bits:]) for _ in range(3))
     # D in two's complement, area_bits + 1 bits: it lies in [-2^area_bits, W]
     remainder = Signal(modbv(0)[area_bits + 1:])
     next_remainder = Signal(modbv(0)[area_bits + 1:])
@@ -256,6 +257,31 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
         if total[area_bits + 1] and not total[area_bits]:
             next_remainder.next = concat(True, intbv(0)[area_bits:])
 
+    @always_comb
+    def follow():
+        # the products +- |h|, each one adder: a + ~b + 1 as {a, 1} + {~b, 1}, the low bit dropped
+        rise_plus = modbv(0)[product_bits:]
+        rise_minus = modbv(0)[product_bits:]
+        grows_uv = bool(took_u != u_inward)
+        wide_u = modbv(0)[product_bits + 1:]
+        wide_v = modbv(0)[product_bits + 1:]
+        wide_uv = modbv(0)[product_bits + 1:]
+        rise_plus[:] = rise
+        rise_minus[:] = ~rise_plus
+        if u_inward:
+            wide_u[:] = concat(prod_u, True) + concat(rise_minus, True)
+            wide_v[:] = concat(prod_v, False) + concat(rise_plus, False)
+        else:
+            wide_u[:] = concat(prod_u, False) + concat(rise_plus, False)
+            wide_v[:] = concat(prod_v, True) + concat(rise_minus, True)
+        if grows_uv:
+            wide_uv[:] = concat(prod_uv, False) + concat(rise_plus, False)
+        else:
+            wide_uv[:] = concat(prod_uv, True) + concat(rise_minus, True)
+        next_u.next = wide_u[product_bits + 1:1]
+        next_v.next = wide_v[product_bits + 1:1]
+        next_uv.next = wide_uv[product_bits + 1:1]
+
     @always_seq(clock.posedge, reset=reset)
     def build():
         # |h| |us|, |h| |vs| and their sum by shift and add, most significant bit first
@@ -298,19 +324,10 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
             remainder.next = next_remainder
             # the products follow |u| and |v|: each +- |h| on a step of its coordinate; a diagonal keeps the sum
             if took_u:
-                if u_inward:
-                    prod_u.next = prod_u - rise
-                else:
-                    prod_u.next = prod_u + rise
+                prod_u.next = next_u
             if took_v:
-                if u_inward:
-                    prod_v.next = prod_v + rise
-                else:
-                    prod_v.next = prod_v - rise
+                prod_v.next = next_v
             if took_u != took_v:
-                if took_u != u_inward:
-                    prod_uv.next = prod_uv + rise
-                else:
-                    prod_uv.next = prod_uv - rise
+                prod_uv.next = next_uv
 
-    return compare, decide, apply, build, run
+    return compare, decide, apply, follow, build, run
