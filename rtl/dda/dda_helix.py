@@ -200,7 +200,8 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
     ``direction``, products, D = ``first_remainder``); the decision at
     each ``helix.advance``, applied the clock after (``pending``) with the
     arc's registered ``took_u``, ``took_v``, ``u_inward`` and ``area_run``
-    (W).  ``moving``: steps are left."""
+    (W).  ``moving``: steps are left (a register beside the count, so that no
+    count's zero test lies before the decision or ``following``)."""
     width = len(magnitude)
     area_bits = len(area_run)
     product_bits = 2 * width
@@ -234,8 +235,7 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
             picked = covers_v
         elif progress.step_v:
             picked = covers_u
-        stepping.next = steps_left != 0 and (picked or helix.alone)
-        moving.next = steps_left != 0
+        stepping.next = moving and (picked or helix.alone)
 
     @always_comb
     def apply():
@@ -311,6 +311,7 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
         if helix.load:
             rise.next = magnitude
             steps_left.next = magnitude
+            moving.next = magnitude != 0
             direction.next = positive
             prod_u.next = wait_u
             prod_v.next = wait_v
@@ -320,6 +321,7 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
             step.next = stepping
             if stepping:
                 steps_left.next = steps_left - 1
+                moving.next = steps_left != 1
         elif pending:
             remainder.next = next_remainder
             # the products follow |u| and |v|: each +- |h| on a step of its coordinate; a diagonal keeps the sum
