@@ -25,8 +25,9 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
     ECP5).  The RAM then reads the head word every clock (``head``, at the
     address the read pointer takes at that edge), and a word written where
     the head is read (into an empty FIFO, or one word left and popped)
-    comes from ``written``, ``din`` registered, the clock after; 64
-    flip-flops more.
+    comes from ``written``, ``din`` registered, the clock after: ``dout``,
+    ``written`` and ``fresh`` in the fabric (on ECP5 yosys keeps the word
+    in 32 fabric flip-flops for the read enable anyway: 33 more there).
 
         clock  _/~\\_/~\\_/~\\_/~\\_
         push   _/~~~\\__________
