@@ -287,15 +287,23 @@ def on_build(item, values):
     elif item.harness[-1] == "machine_harness.sv":
         settings = machine(values)
     else:
-        settings = dict(expose=regs_fifo_registers(values), parameters=harness_parameters(values),
+        helpers = tuple(name for name in item.expose if name in REGS_FIFO_HELPERS)   # its invariants' registers
+        settings = dict(expose=regs_fifo_registers(values) + helpers, parameters=harness_parameters(values),
                         generated={**regs_tables(values), **ISA_TABLE})
-    axes = values["axes"]
-    return replace(item, **settings, name=f"{item.name}_{axes}axes", build=dict(values), fast=False,
-                   convert=partial(built_unit, item.unit, values),
-                   text=f"{item.text}; on a {axes}-axis build, every axis")
+    if "axes" in values:
+        label, build_text = f"{values['axes']}axes", f"on a {values['axes']}-axis build, every axis"
+    else:
+        label, build_text = values["device"], f"on the {values['device']} build"
+    return replace(item, **settings, name=f"{item.name}_{label}", build=dict(values), fast=False,
+                   convert=partial(built_unit, item.unit, values), text=f"{item.text}; {build_text}")
 
 
 GROUPS += [on_build(item, MORE_AXES) for item in GROUPS if item.name in ON_MORE_AXES]
+
+# The FIFO's words into the sequencer on the ECP5 build, whose FIFO delivers its word
+# from a fabric register (rtl/regs/sync_fifo.py, output_register); gen/'s reads the RAM's
+ECP5_BUILD = {"device": "ecp5"}
+GROUPS += [on_build(item, ECP5_BUILD) for item in GROUPS if item.name in ("regs_fifo_order", "regs_fifo_path")]
 
 # The guard's FOLLOWING_ERROR stop on a build with encoders (two axes), through
 # the real following-error units of regs_fifo, every encoder pin free

@@ -1154,6 +1154,8 @@ reg [1:0] card_core0_dda_axes0_dda_arc1_dda_setup1_square;
 reg [2:0] card_core0_dda_axes0_dda_arc1_dda_setup1_state;
 reg [4:0] card_core0_dda_axes0_dda_arc1_dda_setup1_step;
 wire [48:0] card_core0_dda_axes0_dda_arc1_dda_setup1_total;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_within_inner;
+reg card_core0_dda_axes0_dda_arc1_dda_setup1_within_outer;
 reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xs;
 reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_ys;
 reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_mag_xe;
@@ -1164,7 +1166,6 @@ wire card_core0_dda_axes0_dda_arc1_dda_setup1_root_load;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_root_grows;
 reg [27:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_threshold;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_too_wide;
-reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_x;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_y;
@@ -1173,6 +1174,7 @@ reg [24:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_radius;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_plan_beyond;
 reg signed [26:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_diff;
 reg [26:0] card_core0_dda_axes0_dda_arc1_dda_setup1_plan_totals_max;
+wire card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle;
 wire card_core0_dda_axes0_dda_arc1_dda_setup1_plan_done;
 reg card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_end_odd;
 reg [23:0] card_core0_dda_axes0_dda_arc1_dda_setup1_dda_latch1_mag_xe;
@@ -8193,9 +8195,6 @@ always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_captures
     reg sign;
     sign = card_core0_dda_axes0_dda_arc1_dda_setup1_total[(49 - 1)];
     case (card_core0_dda_axes0_dda_arc1_dda_setup1_state)
-        3'b000: begin
-            card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle <= 1'b0;
-        end
         3'b010: begin
             case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
                 'h2: begin
@@ -8212,9 +8211,14 @@ always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_captures
             endcase
         end
         3'b100: begin
-            if ((((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 1) && (!sign)) || ((card_core0_dda_axes0_dda_arc1_dda_setup1_step == 4) && sign))) begin
-                card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle <= 1'b1;
-            end
+            case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
+                'h1: begin
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_within_outer <= sign;
+                end
+                'h4: begin
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_within_inner <= (!sign);
+                end
+            endcase
         end
         3'b101: begin
             case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
@@ -8242,6 +8246,10 @@ always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_captures
         end
     endcase
 end
+
+
+
+assign card_core0_dda_axes0_dda_arc1_dda_setup1_plan_off_circle = (!(card_core0_dda_axes0_dda_arc1_dda_setup1_within_outer && card_core0_dda_axes0_dda_arc1_dda_setup1_within_inner));
 
 
 

@@ -122,6 +122,8 @@ reg [1:0] dda_setup0_square;
 reg [2:0] dda_setup0_state;
 reg [4:0] dda_setup0_step;
 wire [48:0] dda_setup0_total;
+reg dda_setup0_within_inner;
+reg dda_setup0_within_outer;
 reg [23:0] dda_setup0_plan_mag_xs;
 reg [23:0] dda_setup0_plan_mag_ys;
 reg [23:0] dda_setup0_plan_mag_xe;
@@ -132,7 +134,6 @@ wire dda_setup0_root_load;
 reg dda_setup0_root_grows;
 reg [27:0] dda_setup0_plan_threshold;
 reg dda_setup0_plan_too_wide;
-reg dda_setup0_plan_off_circle;
 reg dda_setup0_plan_start_below_x;
 reg dda_setup0_plan_start_same_x;
 reg dda_setup0_plan_start_below_y;
@@ -141,6 +142,7 @@ reg [24:0] dda_setup0_plan_radius;
 reg dda_setup0_plan_beyond;
 reg signed [26:0] dda_setup0_plan_totals_diff;
 reg [26:0] dda_setup0_plan_totals_max;
+wire dda_setup0_plan_off_circle;
 wire dda_setup0_plan_done;
 reg dda_setup0_dda_latch0_end_odd;
 reg [23:0] dda_setup0_dda_latch0_mag_xe;
@@ -927,9 +929,6 @@ always @(posedge clock) begin: dda_setup0_captures
     reg sign;
     sign = dda_setup0_total[(49 - 1)];
     case (dda_setup0_state)
-        3'b000: begin
-            dda_setup0_plan_off_circle <= 1'b0;
-        end
         3'b010: begin
             case (dda_setup0_step)
                 'h2: begin
@@ -946,9 +945,14 @@ always @(posedge clock) begin: dda_setup0_captures
             endcase
         end
         3'b100: begin
-            if ((((dda_setup0_step == 1) && (!sign)) || ((dda_setup0_step == 4) && sign))) begin
-                dda_setup0_plan_off_circle <= 1'b1;
-            end
+            case (dda_setup0_step)
+                'h1: begin
+                    dda_setup0_within_outer <= sign;
+                end
+                'h4: begin
+                    dda_setup0_within_inner <= (!sign);
+                end
+            endcase
         end
         3'b101: begin
             case (dda_setup0_step)
@@ -976,6 +980,10 @@ always @(posedge clock) begin: dda_setup0_captures
         end
     endcase
 end
+
+
+
+assign dda_setup0_plan_off_circle = (!(dda_setup0_within_outer && dda_setup0_within_inner));
 
 
 

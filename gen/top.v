@@ -1177,6 +1177,8 @@ reg [1:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_square;
 reg [2:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state;
 reg [4:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step;
 wire [48:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_within_inner;
+reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_within_outer;
 reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xs;
 reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_ys;
 reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_mag_xe;
@@ -1187,7 +1189,6 @@ wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_load;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_root_grows;
 reg [27:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_threshold;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_too_wide;
-reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_x;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_y;
@@ -1196,6 +1197,7 @@ reg [24:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_radius;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_beyond;
 reg signed [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_diff;
 reg [26:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_totals_max;
+wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle;
 wire card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_done;
 reg card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_end_odd;
 reg [23:0] card1_card_core1_dda_axes1_dda_arc2_dda_setup2_dda_latch2_mag_xe;
@@ -9024,9 +9026,6 @@ always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ca
     reg sign;
     sign = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(49 - 1)];
     case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state)
-        3'b000: begin
-            card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle <= 1'b0;
-        end
         3'b010: begin
             case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
                 'h2: begin
@@ -9043,9 +9042,14 @@ always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ca
             endcase
         end
         3'b100: begin
-            if ((((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 1) && (!sign)) || ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step == 4) && sign))) begin
-                card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle <= 1'b1;
-            end
+            case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
+                'h1: begin
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_within_outer <= sign;
+                end
+                'h4: begin
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_within_inner <= (!sign);
+                end
+            endcase
         end
         3'b101: begin
             case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
@@ -9073,6 +9077,10 @@ always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ca
         end
     endcase
 end
+
+
+
+assign card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_off_circle = (!(card1_card_core1_dda_axes1_dda_arc2_dda_setup2_within_outer && card1_card_core1_dda_axes1_dda_arc2_dda_setup2_within_inner));
 
 
 

@@ -140,7 +140,8 @@ _TABLE = (
     Parameter("device", "generic", "FPGA family the Verilog is for", choices=DEVICES,
               reason="generic: plain Verilog, no vendor primitive; ice40: SB_IO pads that hold the PCI "
               "registers, hand-placed SB_LUT4 cells on the PCI pin paths; ecp5: hand-placed LUT4 cells on the PCI "
-              "pin paths, the pads and the FIFO memory as in the generic build", unit_defaults={"top": "ice40"}),
+              "pin paths, the FIFO's read word from a fabric flip-flop (its block RAM's clock-to-output kept out of the "
+              "sequencer's logic), the pads as in the generic build", unit_defaults={"top": "ice40"}),
     Parameter("variants", "improved,precise", "DDA variants built, reported in BUILD.DDA_VARIANTS",
               choices=tuple(VARIANT_SETS), reason="improved,precise: the paper's improved DDA and the "
               "precise mode; all: the paper's traditional and weighted DDA as well, to reproduce its "

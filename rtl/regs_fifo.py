@@ -170,8 +170,9 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
     drive_cleared, drive_mask = hw["MACHINE_CONTROL"], regmap.register("MACHINE_CONTROL").field("DRIVE_ENABLE").mask
     watchdog_left = hw["WATCHDOG"]   # named here, as the formal harness knows it
+    # on ECP5 the block RAM's 5.8 ns clock-to-output would start the sequencer's decisions on the word
     units = [sync_fifo(clock, reset, push, local.wdata, fifo_pop, fifo_dout, fifo_flush, fifo_level,
-                       fifo_empty, fifo_full, local.room, depth=fifo_depth)]
+                       fifo_empty, fifo_full, local.room, depth=fifo_depth, output_register=build.device == "ecp5")]
     for i, spec in enumerate(specs):
         units.append(reg_word(clock, reset, bus=register_bus, set_port=set_port, word=words[spec.name],
                               chain_in=chain[i], chain_out=chain[i + 1], **aliases.get(spec.offset, {})))

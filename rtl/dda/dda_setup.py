@@ -59,7 +59,8 @@ def dda_setup(clock, reset, cmd, plan):
     phase), ``line_major`` (a line's max(|dx|, |dy|)), ``threshold``
     (``plan.threshold``, ``plan.too_wide`` and their counters), ``captures``
     (what is read from the total: the compares, ``m_is_y``, ``pick_x``, the
-    checks, ``radius``, the totals), ``status`` (``ready``, ``plan.done``).
+    limits' signs, ``radius``, the totals), ``circle`` (``plan.off_circle``
+    from the limits' signs), ``status`` (``ready``, ``plan.done``).
     """
     width = cmd.coord_width
     gap_width = 2 * width + 1
@@ -88,6 +89,8 @@ def dda_setup(clock, reset, cmd, plan):
     grew = Signal(bool(0))
     major_width = max(thr_width, left_width)
     major = Signal(intbv(0)[major_width:])
+    # the limits: gap - 2m - 1 < 0 (the sign at step 1) and gap + 2m >= 0 (at step 4): the end within one step
+    within_outer, within_inner = Signal(bool(0)), Signal(bool(0))
 
     latch = dda_latch(clock, reset, cmd, plan)
     phase = dda_sequence(cmd, plan, sequence)
@@ -185,9 +188,7 @@ def dda_setup(clock, reset, cmd, plan):
     def captures():
         # results read from the adder's total at the edge that forms them
         sign = total[gap_width - 1]
-        if state == t_setup.S_IDLE:
-            plan.off_circle.next = False
-        elif state == t_setup.S_PRE:
+        if state == t_setup.S_PRE:
             if step == 2:
                 m_is_y.next = sign
             elif step == 4:
@@ -197,8 +198,10 @@ def dda_setup(clock, reset, cmd, plan):
                 plan.start_below_y.next = sign
                 plan.start_same_y.next = total[width + 1:] == 0
         elif state == t_setup.S_LIMIT:
-            if (step == 1 and not sign) or (step == 4 and sign):
-                plan.off_circle.next = True
+            if step == 1:
+                within_outer.next = sign
+            elif step == 4:
+                within_inner.next = not sign
         elif state == t_setup.S_POST:
             if step == 0:
                 plan.radius.next = total[width + 2:1]
@@ -216,9 +219,15 @@ def dda_setup(clock, reset, cmd, plan):
             m_is_y.next = m_is_y
 
     @always_comb
+    def circle():
+        # from the limits' signs as taken, so that no decision follows the adder's carry (every arc
+        # passes the limits before its plan is done; a line's plan ignores the flag)
+        plan.off_circle.next = not (within_outer and within_inner)
+
+    @always_comb
     def status():
         cmd.ready.next = state == t_setup.S_IDLE
         plan.done.next = state == t_setup.S_DONE
 
     return (latch, square_root, phase, program, select_source, adder, datapath, sequencer, line_major,
-            threshold, captures, status)
+            threshold, captures, circle, status)

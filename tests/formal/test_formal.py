@@ -239,6 +239,24 @@ def test_more_axes_defect_is_caught(name, tmp_path):
                            lambda _: defect, rules, tmp_path)
 
 
+# A defect put by hand into a copy of the ECP5 build's regs_fifo.v, whose FIFO
+# delivers its word from a fabric register (rtl/regs/sync_fifo.py, output_register):
+# the word written where the head is read taken from the RAM's read register,
+# which still holds the old word; `regs_fifo_order_ecp5` must reject it.
+ECP5_DEFECTS = {
+    "fresh_word_from_ram": ("regs_fifo_order_ecp5", "fifo_dout <= sync_fifo0_written;", "fifo_dout <= sync_fifo0_head;",
+                            {"rf_fifo_in_order"}),
+}
+
+
+@pytest.mark.slow(reason="a bounded check of a minute on the ECP5 build")
+@pytest.mark.parametrize("name", ECP5_DEFECTS)
+def test_ecp5_defect_is_caught(name, tmp_path):
+    judge, original, defect, rules = ECP5_DEFECTS[name]
+    assert_defect_rejected(judge, catalogue.built_unit("regs_fifo", catalogue.ECP5_BUILD), re.escape(original),
+                           lambda _: defect, rules, tmp_path)
+
+
 # Defects put by hand into a copy of the regs_fifo.v of the encoders build
 # (`machine_following_error`): Y's following error latched as X's (the
 # guard's table of the lowest flagged axis, wrong for Y alone); the stop
