@@ -26,8 +26,8 @@ def sync_fifo(clock, reset, push, din, pop, dout, flush, level, empty, full, roo
     address the read pointer takes at that edge), and a word written where
     the head is read (into an empty FIFO, or one word left and popped)
     comes from ``written``, ``din`` registered, the clock after: ``dout``,
-    ``written`` and ``fresh`` in the fabric (on ECP5 yosys keeps the word
-    in 32 fabric flip-flops for the read enable anyway: 33 more there).
+    ``written`` and ``fresh`` in the fabric (on the four-axis ECP5 build 33
+    flip-flops more than without, docs/synthesis.md).
 
         clock  _/~\\_/~\\_/~\\_/~\\_
         push   _/~~~\\__________
