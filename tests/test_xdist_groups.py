@@ -4,7 +4,7 @@ worker runs them all (``--dist loadgroup``, setup.cfg); pytest-xdist's
 scheduler finds a test's group in the ``@group`` it appends to the node id on
 the worker.  A pytest whose node ids drop that suffix (9.2: pytest-xdist issue
 1386) spreads every group over both workers without a word: each builds the
-same models, the LinuxCNC tests run two at once.  This test fails then."""
+same models, and a worker waits for the other's LinuxCNC.  This test fails then."""
 import pytest
 
 GROUP = "xdist_group_check"
