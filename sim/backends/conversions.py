@@ -6,8 +6,10 @@ key, convert)``.  The hash covers MyHDL's version, every Python source the
 converter reads (``rtl/`` and the ``models/`` tables beneath it) and ``key``
 (the unit and its parameters), so a changed source or parameter is converted
 afresh and an unchanged one is not converted again, by this process or by
-another worker: the file appears whole (``os.replace``) or not at all.
+another worker: the file appears whole (``os.replace``) or not at all, and a
+worker that asks while another converts the same key waits for that one.
 """
+import fcntl
 import functools
 import hashlib
 import os
@@ -37,10 +39,23 @@ def converted(name, key, convert):
     """``<name>.v`` as ``convert(folder)`` writes it (returning its path), for ``key``."""
     digest = hashlib.sha256(f"{sources_digest()}\0{name}\0{key}".encode()).hexdigest()[:20]
     verilog = build_dir("conv", f"{name}-{digest}") / f"{name}.v"
-    if not verilog.exists():
-        staging = Path(tempfile.mkdtemp(prefix=f".{name}-", dir=build_dir("conv")))
-        os.replace(convert(staging), verilog)
-        shutil.rmtree(staging, ignore_errors=True)
+    if verilog.exists():
+        return verilog
+    # one conversion of a key at a time: a second worker that wants it waits for the first's
+    # (a card takes 5-15 s) instead of converting it again; as in build_model, the lock file
+    # goes with the conversion, and a worker that comes between still finds the file
+    lock_path = build_dir("conv") / f".{verilog.parent.name}.lock"
+    with open(lock_path, "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            if not verilog.exists():
+                staging = Path(tempfile.mkdtemp(prefix=f".{name}-", dir=build_dir("conv")))
+                try:
+                    os.replace(convert(staging), verilog)
+                finally:
+                    shutil.rmtree(staging, ignore_errors=True)
+        finally:
+            lock_path.unlink(missing_ok=True)
     return verilog
 
 

@@ -81,6 +81,29 @@ def test_every_file_the_harness_includes_is_in_the_cache_key():
     assert set(build.HERE.glob("*.h")) == set(build.HARNESS_HEADERS)
 
 
+def test_the_verilator_runtime_is_compiled_once_for_every_model(tmp_path, monkeypatch):
+    # verilated.cpp and the rest compile the same for every model of the same options: a second
+    # model compiles only its own files and the harness, and still counts right
+    cache = tmp_path / "vlt"
+    cache.mkdir()
+    monkeypatch.setattr(build, "build_dir", lambda *parts: cache)
+    compiled, run = [], build._run
+
+    def recorded(command, tool, doing, timeout):
+        result = run(command, tool, doing, timeout)
+        if doing == "compiling":
+            compiled.append(result.stdout)
+        return result
+
+    monkeypatch.setattr(build, "_run", recorded)
+    models = [_counter(tmp_path / f"counter{n}.v", f"step + 8'd{n}") for n in (5, 6)]
+    assert ["verilated.cpp" in output for output in compiled] == [True, False]
+    assert len(list(cache.glob("runtime-*"))) == 1
+    for model in models:
+        model.tick(2)
+    assert [model["count"] for model in models] == [12, 14]
+
+
 def _build_in_process(path, queue):
     queue.put(str(build_model([path], "counter")))
 

@@ -16,6 +16,10 @@ from models.dda_plan import plan_arc, setup_clocks
 from sim.card.dda_exhaustive import (DIR_Y, NARROW_WIDTH, STEP_X, STEP_Y, check_move, every_arc, every_line, narrow_dda,
                                      run_all, step_clocks)
 
+# one worker converts and builds the narrow DDA for the module: two would convert into the same
+# folder at once and build the model twice
+pytestmark = pytest.mark.xdist_group("dda_narrow")
+
 
 @pytest.fixture(scope="module")
 def dda():

@@ -1,5 +1,8 @@
 """The kept conversions (``sim/backends/conversions.py``): one conversion per
 sources and key, a new one when either changes, shared by every caller."""
+import multiprocessing
+import time
+
 import pytest
 from myhdl import ResetSignal, Signal, intbv
 
@@ -51,6 +54,32 @@ def test_a_changed_source_or_key_is_converted_afresh(sources, package):
     conversions.sources_digest.cache_clear()
     changed = conversions.converted("unit", "depth=16", _converter(calls))
     assert len({kept, other_key, changed}) == 3 and len(calls) == 3
+
+
+def _convert_slowly_in_process(log, queue):
+    def convert(folder):
+        with open(log, "a") as calls:
+            calls.write("converted\n")
+        time.sleep(0.5)  # long enough for the other process to ask while this one converts
+        (folder / "unit.v").write_text("module unit;\nendmodule\n")
+        return folder / "unit.v"
+
+    queue.put(str(conversions.converted("unit", "depth=16", convert)))
+
+
+def test_two_workers_asking_at_once_share_one_conversion(sources):
+    # a second worker that asks while the first converts waits for it, converting nothing itself
+    log, context = sources / "calls.txt", multiprocessing.get_context("fork")
+    queue = context.Queue()
+    workers = [context.Process(target=_convert_slowly_in_process, args=(log, queue)) for _ in range(2)]
+    for worker in workers:
+        worker.start()
+    for worker in workers:
+        worker.join(60)
+    assert [w.exitcode for w in workers] == [0, 0]
+    assert len({queue.get(timeout=5), queue.get(timeout=5)}) == 1
+    assert log.read_text().splitlines() == ["converted"]
+    assert not any(path.name.startswith(".") for path in (sources / "build" / "conv").iterdir()), "lock left behind"
 
 
 def test_port_key_tells_widths_reset_values_and_reset_kinds_apart():

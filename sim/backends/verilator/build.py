@@ -10,7 +10,9 @@ The cache is ``build/vlt/<top>-<key>/``; the key hashes the Verilog files,
 the harness sources, the tool's version and path, and every option.  A build
 happens in a temporary folder beside it and is renamed into place whole, so a
 half-built or stale model is never loaded and two test workers building at
-once both end with one good copy.
+once both end with one good copy.  The Verilator runtime's objects, the same
+for every model compiled with the same commands, are compiled once and kept
+beside the models (``build/vlt/runtime-<key>/``).
 
 The tool: ``$DDA_CARD_VERILATOR`` if set (another ``verilator`` script; set
 ``VERILATOR_ROOT`` with it where that install needs it), else ``verilator``
@@ -50,6 +52,7 @@ VERILATOR_OPTIONS = ("--cc", "--exe", "-O3", "--x-assign", "fast", "--x-initial"
 # runs (short, dominated by the Python side of every call) are no slower.
 MAKE_OPTIONS = ("OPT_FAST=-O1", "OPT_SLOW=-O0", "OPT_GLOBAL=-O1")
 
+_GLOBAL_CLASSES = re.compile(r"^VM_GLOBAL_(?:FAST|SLOW) \+= \\\n((?:[ \t]+\S+ \\\n)*)", re.MULTILINE)
 _PORT = re.compile(r"\bVL_(IN|OUT|INOUT)(8|16|64|W)?\s*\(\s*&?(\w+)\s*,\s*(\d+)\s*,\s*(\d+)")
 
 
@@ -175,10 +178,45 @@ def _build(work, verilog_files, top, trace, defines, tool):
     _run(command, tool, "verilating", VERILATE_SECONDS)
     header = objects / f"{PREFIX}.h"
     (objects / "vc_ports.h").write_text(port_header(header.read_text(), top))
+    runtime, names = _runtime(objects, tool)
+    kept = runtime.is_dir()
+    if kept:  # copied now, so newer than their sources: make compiles only the model and the harness
+        for name in names:
+            shutil.copy(runtime / name, objects / name)
     make = ["make", "-C", str(objects), "-f", f"{PREFIX}.mk", f"-j{os.cpu_count() or 1}", *MAKE_OPTIONS]
     _run(make, tool, "compiling", COMPILE_SECONDS)
+    if not kept:
+        _keep_runtime(objects, names, runtime)
     shutil.move(str(objects / LIBRARY), str(work / LIBRARY))
     shutil.rmtree(objects)
+
+
+def _runtime(objects, tool):
+    """(folder, object names) of the Verilator runtime the makefile in ``objects`` links
+    (``verilated.o``, ``verilated_threads.o``, the trace writer's): the same for every model made
+    with the same compile commands, so compiled once (about 5 s of a card's 15 s of CPU) and kept
+    in ``build/vlt/runtime-<key>``, the key hashing the tool and those commands exactly."""
+    classes = (objects / f"{PREFIX}_classes.mk").read_text()
+    names = [f"{name}.o" for block in _GLOBAL_CLASSES.findall(classes) for name in re.findall(r"(\S+) \\", block)]
+    commands = _run(["make", "-n", "-C", str(objects), "-f", f"{PREFIX}.mk", *MAKE_OPTIONS, *names], tool,
+                    "listing the runtime's compile commands", VERILATE_SECONDS).stdout
+    digest = hashlib.sha256("\0".join([tool.command, tool.version, *names, commands.replace(str(objects), "")])
+                            .encode()).hexdigest()[:20]
+    return objects.parent.parent / f"runtime-{digest}", names
+
+
+def _keep_runtime(objects, names, runtime):
+    """Keep this build's runtime objects as ``runtime`` (whole or not at all, like a model)."""
+    staging = Path(tempfile.mkdtemp(prefix=".runtime-", dir=runtime.parent))
+    try:
+        for name in names:
+            shutil.copy(objects / name, staging / name)
+        os.rename(staging, runtime)
+    except OSError:
+        if not runtime.is_dir():  # not another worker's runtime kept first: a real failure
+            raise
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
 
 
 def _run(command, tool, doing, timeout):
@@ -193,6 +231,7 @@ def _run(command, tool, doing, timeout):
         errors = [line for line in (result.stderr + result.stdout).splitlines() if "Error" in line or "error" in line]
         shown = "\n".join(errors[:12]) or result.stderr[-2000:]
         raise VerilatorError(f"{doing} failed (exit {result.returncode}):\n{shown}")
+    return result
 
 
 def ports_of(model_header):
