@@ -201,16 +201,6 @@ class MoveIterator:
         return tuple(left)
 
 
-def arc_iterations(command, coord_width=24, variants=ALL_VARIANTS):
-    """K: the iterations of ``command``'s arc in its plane (``ArcIterator``, plane and helix aside)."""
-    iterator = ArcIterator(replace(command, helix=(), area=None), coord_width, variants=variants)
-    count = 0
-    while not iterator.finished:
-        iterator.step()
-        count += 1
-    return count
-
-
 def with_area(command, coord_width=24, variants=ALL_VARIANTS):
     """``command`` with its AREA set to W when it has a helix (as the card needs it)."""
     if not command.helix_axes:

@@ -32,12 +32,12 @@ ROUNDING = math.sqrt(2) / 2
 HELIX_PER_ANGLE = 0.75
 
 
-def swept_area(command):
-    """Twice the area the arc of ``command`` sweeps about its centre: |u dv - v du| summed over the
-    points of the two-axis model's path (the AREA the card needs)."""
+def sweeps(command):
+    """|u dv - v du| of each step of the arc of ``command`` on the two-axis model's path: twice the area
+    each step sweeps about the centre (their sum is the AREA the card needs)."""
     plain = ArcCommand(command.xs, command.ys, command.xe, command.ye, command.ccw, command.variant)
     points = iterate(plain).points()
-    return sum(abs(a[0] * (b[1] - a[1]) - a[1] * (b[0] - a[0])) for a, b in zip(points, points[1:]))
+    return [abs(a[0] * (b[1] - a[1]) - a[1] * (b[0] - a[0])) for a, b in zip(points, points[1:])]
 
 
 def close(a, b, tol=1e-9):
@@ -151,7 +151,7 @@ def test_a_helical_bore_plans_to_helical_arcs_that_end_on_the_drawing():
     helical = [c for _, c, _ in moves if isinstance(c, ArcCommand) and c.helix]
     assert helical and all(c.plane == (0, 1) and c.helix_axes == (2,) for c in helical)
     for command in helical:  # AREA is the area the arc sweeps
-        assert command.area == swept_area(command)
+        assert command.area == sum(sweeps(command))
     assert sum(c.helix[2] for c in helical) == -300  # three turns down 3 mm, the flat turn none
     assert moves[-1][2][-1] == (200, 0, -300) == planned.end
     result = check(planned)
@@ -224,10 +224,8 @@ def test_a_helix_steeper_than_the_card_steps_becomes_3d_lines(rise_mm):
     helical = [c for _, c, _ in moves if isinstance(c, ArcCommand) and c.helix]
     # the card's at-most-one-step rule, from the path's own sweeps: |h| times the largest sweep <= W
     for command in helical:
-        plain = iterate(ArcCommand(command.xs, command.ys, command.xe, command.ye, command.ccw, command.variant))
-        points = plain.points()
-        largest = max(abs(a[0] * (b[1] - a[1]) - a[1] * (b[0] - a[0])) for a, b in zip(points, points[1:]))
-        assert max(map(abs, command.helix)) * largest <= command.area == swept_area(command)
+        swept = sweeps(command)
+        assert max(map(abs, command.helix)) * max(swept) <= command.area == sum(swept)
     assert len(helical) < len(moves)
     assert moves[-1][2][-1] == (200, 0, 200 * rise_mm)
     # the chords' sagitta, half a step of the DDA and the rounding of their ends onto the lattice

@@ -2,7 +2,7 @@
 
 Expected words are assembled here from the bit positions docs/axes.md fixes
 (LINE.AXES 25:20, ARC.U_AXIS 15:13, V_AXIS 19:17, HELIX 25:20, PULSE.AXES 25:20;
-operands per axis ascending, ITERATIONS before a helix's displacements), not
+operands per axis ascending, AREA_LO and AREA_HI before a helix's displacements), not
 from the encoder.
 """
 import random

@@ -3,18 +3,16 @@
 Golden facts: the ideal straight line ``k d_i / T``, checked with exact
 integer arithmetic (the helix, which follows the area its arc sweeps, is
 ``tests/models/test_helix_area.py``'s); the two-axis golden
-model (``LineIterator``, ``iterate``), which an N-axis move must repeat on its
+model (``LineIterator``), which an N-axis move must repeat on its
 plane; the directions of G17, G18 and G19 as RS274/NGC defines them (normals
 +Z, +Y, +X, written out here, not read from ``models.axes``).
 """
-import math
 import random
-from dataclasses import replace
 
 import pytest
 
-from models.dda_axes import AxesStep, MoveIterator, arc_iterations, check_move, iterate_axes, iterations_left_bound, with_area
-from models.dda_model import PRECISE, TRADITIONAL, LineIterator, iterate
+from models.dda_axes import AxesStep, MoveIterator, check_move, iterate_axes, iterations_left_bound, with_area
+from models.dda_model import PRECISE, TRADITIONAL, LineIterator
 from models.dda_plan import ArcCommand, AxesLineCommand, LineCommand
 
 # RS274/NGC: G17 is the XY plane seen from +Z, G18 the ZX plane seen from +Y, G19 the YZ plane seen from +X;
@@ -95,12 +93,6 @@ def test_arcs_turn_the_way_rs274ngc_says_in_every_plane(name, ccw, variant):
     sense = 1 if ccw else -1
     assert all(t * sense >= 0 for t in turns) and sum(turns) * sense > 0
     assert {p[3 - sum(plane)] for p in points} == {0}  # the third linear axis stays
-
-
-def test_arc_iterations_is_the_two_axis_models_count():
-    for command in (ArcCommand(100, 0, 0, 100), ArcCommand(30, 40, 30, 40, ccw=False),
-                    ArcCommand(8, 0, 0, 8, variant=TRADITIONAL), ArcCommand(0, -50, 50, 0, plane=(2, 1))):
-        assert arc_iterations(command) == len(iterate(command).steps)
 
 
 @pytest.mark.parametrize("command", [
