@@ -274,6 +274,7 @@ reg [1:0] card_core0_regs_fifo1_step_mode;
 reg signed [31:0] card_core0_regs_fifo1_pos_y_snapshot;
 reg [23:0] card_core0_regs_fifo1_watchdog_left;
 wire card_core0_regs_fifo1_any_busy;
+wire card_core0_regs_fifo1_busy_but_loads;
 reg [31:0] card_core0_regs_fifo1_byte_mask;
 reg card_core0_regs_fifo1_clear_error;
 reg card_core0_regs_fifo1_clear_position;
@@ -282,6 +283,7 @@ wire [1:0] card_core0_regs_fifo1_direct_busy;
 reg card_core0_regs_fifo1_direct_clear;
 reg card_core0_regs_fifo1_direct_mode;
 reg card_core0_regs_fifo1_direct_ready;
+wire [1:0] card_core0_regs_fifo1_direct_running;
 wire card_core0_regs_fifo1_discard_on_clear;
 reg [1:0] card_core0_regs_fifo1_drive_cleared;
 reg card_core0_regs_fifo1_enable;
@@ -999,6 +1001,7 @@ wire card_core0_regs_fifo1_direct_pulse2_stepping;
 reg card_core0_regs_fifo1_direct_pulse2_waiting;
 wire card_core0_regs_fifo1_direct_pulse2_command_busy;
 reg card_core0_regs_fifo1_direct_pulse2_command_load;
+wire card_core0_regs_fifo1_direct_pulse2_command_running;
 reg card_core0_regs_fifo1_direct_pulse2_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_command_period;
@@ -1014,6 +1017,7 @@ wire card_core0_regs_fifo1_direct_pulse3_stepping;
 reg card_core0_regs_fifo1_direct_pulse3_waiting;
 wire card_core0_regs_fifo1_direct_pulse3_command_busy;
 reg card_core0_regs_fifo1_direct_pulse3_command_load;
+wire card_core0_regs_fifo1_direct_pulse3_command_running;
 reg card_core0_regs_fifo1_direct_pulse3_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse3_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse3_command_period;
@@ -1338,6 +1342,8 @@ assign card_core0_regs_fifo1_status_words1_words_index_fired = 1'd0;
 assign card_core0_regs_fifo1_status_words1_words_probe_fired = 1'd0;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
+assign card_core0_regs_fifo1_direct_running[1] = card_core0_regs_fifo1_direct_pulse3_command_running;
+assign card_core0_regs_fifo1_direct_running[0] = card_core0_regs_fifo1_direct_pulse2_command_running;
 assign card_core0_regs_fifo1_requested[1] = card_core0_regs_fifo1_requests_step_y;
 assign card_core0_regs_fifo1_requested[0] = card_core0_regs_fifo1_requests_step_x;
 assign card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1_any_flag[6] = card_core0_regs_fifo1_sequencer1_command_header1__reserved_bits1__reserved_class7_flag;
@@ -6211,6 +6217,7 @@ end
 
 
 assign card_core0_regs_fifo1_direct_pulse2_command_busy = (card_core0_regs_fifo1_direct_pulse2_command_load || card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
+assign card_core0_regs_fifo1_direct_pulse2_command_running = (card_core0_regs_fifo1_direct_pulse2_pending || card_core0_regs_fifo1_direct_request_x);
 
 
 
@@ -6310,6 +6317,7 @@ end
 
 
 assign card_core0_regs_fifo1_direct_pulse3_command_busy = (card_core0_regs_fifo1_direct_pulse3_command_load || card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
+assign card_core0_regs_fifo1_direct_pulse3_command_running = (card_core0_regs_fifo1_direct_pulse3_pending || card_core0_regs_fifo1_direct_request_y);
 
 
 
@@ -7344,7 +7352,7 @@ always @(posedge clock, negedge reset) begin: card_core0_regs_fifo1_write_stage
 end
 
 
-always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_out_ready, card_core0_core_clear, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_command, card_core0_regs_fifo1_any_busy, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_home_cut, card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_control, card_core0_regs_fifo1_tick, card_core0_regs_fifo1_ramp_step, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_command_strobe, card_core0_regs_fifo1_halt, card_core0_regs_fifo1_machine_control) begin: card_core0_regs_fifo1_control_bits
+always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card_core0_regs_fifo1_out_ready, card_core0_core_clear, card_core0_regs_fifo1_busy_but_loads, card_core0_regs_fifo1_guard_stopped, card_core0_regs_fifo1_command, card_core0_regs_fifo1_guard_stopping, card_core0_regs_fifo1_home_cut, card_core0_regs_fifo1_outputs_busy, card_core0_regs_fifo1_control, card_core0_regs_fifo1_tick, card_core0_regs_fifo1_ramp_step, card_core0_regs_fifo1_conditioning_active, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_command_strobe, card_core0_regs_fifo1_halt, card_core0_regs_fifo1_machine_control) begin: card_core0_regs_fifo1_control_bits
     card_core0_regs_fifo1_enable = (card_core0_regs_fifo1_control[0] && (!card_core0_regs_fifo1_control[1]) && (!card_core0_regs_fifo1_halt) && (!card_core0_regs_fifo1_home_busy));
     card_core0_regs_fifo1_direct_mode = card_core0_regs_fifo1_control[1];
     card_core0_regs_fifo1_clear_error = (card_core0_regs_fifo1_command_strobe && card_core0_regs_fifo1_command[1]);
@@ -7357,7 +7365,7 @@ always @(card_core0_regs_fifo1_feed_held, card_core0_regs_fifo1_fifo_empty, card
     card_core0_regs_fifo1_direct_ready = (card_core0_regs_fifo1_out_ready && (!card_core0_regs_fifo1_guard_stopping));
     card_core0_regs_fifo1_pulse_clear = (card_core0_core_clear || card_core0_regs_fifo1_halt);
     card_core0_regs_fifo1_sequencer_clear = (card_core0_core_clear || card_core0_regs_fifo1_guard_stopped);
-    card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_any_busy) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
+    card_core0_regs_fifo1_home_idle = ((!card_core0_regs_fifo1_busy_but_loads) && card_core0_regs_fifo1_fifo_empty && (!card_core0_regs_fifo1_guard_stopped) && (!card_core0_regs_fifo1_halt));
     card_core0_regs_fifo1_direct_clear = (card_core0_core_clear || card_core0_regs_fifo1_home_cut);
     card_core0_regs_fifo1_drive_cleared = 0;
     if (card_core0_regs_fifo1_guard_stopped) begin
@@ -7400,6 +7408,7 @@ assign card_core0_regs_fifo1_outputs_busy = ((card_core0_regs_fifo1_requested !=
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
 assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || (card_core0_regs_fifo1_direct_busy != 0) || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
+assign card_core0_regs_fifo1_busy_but_loads = (card_core0_regs_fifo1_seq_busy || (card_core0_regs_fifo1_direct_running != 0) || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
 
 
 
@@ -8193,7 +8202,9 @@ end
 
 always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_captures
     reg sign;
+    reg same;
     sign = card_core0_dda_axes0_dda_arc1_dda_setup1_total[(49 - 1)];
+    same = ((card_core0_dda_axes0_dda_arc1_dda_setup1_gap[(24 + 1)-1:0] ^ card_core0_dda_axes0_dda_arc1_dda_setup1_operand[(24 + 1)-1:0]) == ((1 << (24 + 1)) - 1));
     case (card_core0_dda_axes0_dda_arc1_dda_setup1_state)
         3'b010: begin
             case (card_core0_dda_axes0_dda_arc1_dda_setup1_step)
@@ -8202,11 +8213,11 @@ always @(posedge clock) begin: card_core0_dda_axes0_dda_arc1_dda_setup1_captures
                 end
                 'h4: begin
                     card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_x <= sign;
-                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x <= (card_core0_dda_axes0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_x <= same;
                 end
                 'h6: begin
                     card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_below_y <= sign;
-                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_y <= (card_core0_dda_axes0_dda_arc1_dda_setup1_total[(24 + 1)-1:0] == 0);
+                    card_core0_dda_axes0_dda_arc1_dda_setup1_plan_start_same_y <= same;
                 end
             endcase
         end

@@ -927,7 +927,9 @@ end
 
 always @(posedge clock) begin: dda_setup0_captures
     reg sign;
+    reg same;
     sign = dda_setup0_total[(49 - 1)];
+    same = ((dda_setup0_gap[(24 + 1)-1:0] ^ dda_setup0_operand[(24 + 1)-1:0]) == ((1 << (24 + 1)) - 1));
     case (dda_setup0_state)
         3'b010: begin
             case (dda_setup0_step)
@@ -936,11 +938,11 @@ always @(posedge clock) begin: dda_setup0_captures
                 end
                 'h4: begin
                     dda_setup0_plan_start_below_x <= sign;
-                    dda_setup0_plan_start_same_x <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                    dda_setup0_plan_start_same_x <= same;
                 end
                 'h6: begin
                     dda_setup0_plan_start_below_y <= sign;
-                    dda_setup0_plan_start_same_y <= (dda_setup0_total[(24 + 1)-1:0] == 0);
+                    dda_setup0_plan_start_same_y <= same;
                 end
             endcase
         end

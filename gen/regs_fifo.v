@@ -189,6 +189,7 @@ reg [1:0] step_mode;
 reg signed [31:0] pos_y_snapshot;
 reg [23:0] watchdog_left;
 wire any_busy;
+wire busy_but_loads;
 reg [31:0] byte_mask;
 reg clear_error;
 reg clear_position;
@@ -197,6 +198,7 @@ wire [1:0] direct_busy;
 reg direct_clear;
 reg direct_mode;
 reg direct_ready;
+wire [1:0] direct_running;
 wire discard_on_clear;
 reg [1:0] drive_cleared;
 reg enable;
@@ -893,6 +895,7 @@ wire direct_pulse0_stepping;
 reg direct_pulse0_waiting;
 wire direct_pulse0_command_busy;
 reg direct_pulse0_command_load;
+wire direct_pulse0_command_running;
 reg direct_pulse0_command_retarget;
 reg signed [23:0] direct_pulse0_command_count;
 reg [15:0] direct_pulse0_command_period;
@@ -908,6 +911,7 @@ wire direct_pulse1_stepping;
 reg direct_pulse1_waiting;
 wire direct_pulse1_command_busy;
 reg direct_pulse1_command_load;
+wire direct_pulse1_command_running;
 reg direct_pulse1_command_retarget;
 reg signed [23:0] direct_pulse1_command_count;
 reg [15:0] direct_pulse1_command_period;
@@ -1060,6 +1064,8 @@ assign status_words0_words_index_fired = 1'd0;
 assign status_words0_words_probe_fired = 1'd0;
 assign direct_busy[1] = direct_pulse1_command_busy;
 assign direct_busy[0] = direct_pulse0_command_busy;
+assign direct_running[1] = direct_pulse1_command_running;
+assign direct_running[0] = direct_pulse0_command_running;
 assign requested[1] = requests_step_y;
 assign requested[0] = requests_step_x;
 assign sequencer0_command_header0__reserved_bits0_any_flag[6] = sequencer0_command_header0__reserved_bits0__reserved_class0_flag;
@@ -4712,6 +4718,7 @@ end
 
 
 assign direct_pulse0_command_busy = (direct_pulse0_command_load || direct_pulse0_pending || direct_request_x);
+assign direct_pulse0_command_running = (direct_pulse0_pending || direct_request_x);
 
 
 
@@ -4811,6 +4818,7 @@ end
 
 
 assign direct_pulse1_command_busy = (direct_pulse1_command_load || direct_pulse1_pending || direct_request_y);
+assign direct_pulse1_command_running = (direct_pulse1_pending || direct_request_y);
 
 
 
@@ -5845,7 +5853,7 @@ always @(posedge clock, negedge reset) begin: write_stage
 end
 
 
-always @(feed_held, fifo_empty, out_ready, core_clear, guard_stopped, command, any_busy, guard_stopping, home_cut, outputs_busy, control, tick, ramp_step, conditioning_active, home_busy, command_strobe, halt, machine_control) begin: control_bits
+always @(feed_held, fifo_empty, out_ready, core_clear, busy_but_loads, guard_stopped, command, guard_stopping, home_cut, outputs_busy, control, tick, ramp_step, conditioning_active, home_busy, command_strobe, halt, machine_control) begin: control_bits
     enable = (control[0] && (!control[1]) && (!halt) && (!home_busy));
     direct_mode = control[1];
     clear_error = (command_strobe && command[1]);
@@ -5858,7 +5866,7 @@ always @(feed_held, fifo_empty, out_ready, core_clear, guard_stopped, command, a
     direct_ready = (out_ready && (!guard_stopping));
     pulse_clear = (core_clear || halt);
     sequencer_clear = (core_clear || guard_stopped);
-    home_idle = ((!any_busy) && fifo_empty && (!guard_stopped) && (!halt));
+    home_idle = ((!busy_but_loads) && fifo_empty && (!guard_stopped) && (!halt));
     direct_clear = (core_clear || home_cut);
     drive_cleared = 0;
     if (guard_stopped) begin
@@ -5901,6 +5909,7 @@ assign outputs_busy = ((requested != 0) || requested_before || out_active_before
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
 assign any_busy = (seq_busy || (direct_busy != 0) || out_active || dda_busy || home_busy);
+assign busy_but_loads = (seq_busy || (direct_running != 0) || out_active || dda_busy || home_busy);
 
 
 

@@ -297,6 +297,7 @@ reg [1:0] card1_card_core1_regs_fifo2_step_mode;
 reg signed [31:0] card1_card_core1_regs_fifo2_pos_y_snapshot;
 reg [23:0] card1_card_core1_regs_fifo2_watchdog_left;
 wire card1_card_core1_regs_fifo2_any_busy;
+wire card1_card_core1_regs_fifo2_busy_but_loads;
 reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 reg card1_card_core1_regs_fifo2_clear_error;
 reg card1_card_core1_regs_fifo2_clear_position;
@@ -305,6 +306,7 @@ wire [1:0] card1_card_core1_regs_fifo2_direct_busy;
 reg card1_card_core1_regs_fifo2_direct_clear;
 reg card1_card_core1_regs_fifo2_direct_mode;
 reg card1_card_core1_regs_fifo2_direct_ready;
+wire [1:0] card1_card_core1_regs_fifo2_direct_running;
 wire card1_card_core1_regs_fifo2_discard_on_clear;
 reg [1:0] card1_card_core1_regs_fifo2_drive_cleared;
 reg card1_card_core1_regs_fifo2_enable;
@@ -1022,6 +1024,7 @@ wire card1_card_core1_regs_fifo2_direct_pulse4_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse4_waiting;
 wire card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_load;
+wire card1_card_core1_regs_fifo2_direct_pulse4_command_running;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_command_period;
@@ -1037,6 +1040,7 @@ wire card1_card_core1_regs_fifo2_direct_pulse5_stepping;
 reg card1_card_core1_regs_fifo2_direct_pulse5_waiting;
 wire card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_load;
+wire card1_card_core1_regs_fifo2_direct_pulse5_command_running;
 reg card1_card_core1_regs_fifo2_direct_pulse5_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse5_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse5_command_period;
@@ -1403,6 +1407,8 @@ assign card1_pci_slave2_pci_boundary2_ad_out_next[1] = card1_pci_slave2_pci_boun
 assign card1_pci_slave2_pci_boundary2_ad_out_next[0] = card1_pci_slave2_pci_boundary2_pin_lut22_out;
 assign card1_card_core1_regs_fifo2_direct_busy[1] = card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
 assign card1_card_core1_regs_fifo2_direct_busy[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
+assign card1_card_core1_regs_fifo2_direct_running[1] = card1_card_core1_regs_fifo2_direct_pulse5_command_running;
+assign card1_card_core1_regs_fifo2_direct_running[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_running;
 assign card1_card_core1_regs_fifo2_requested[1] = card1_card_core1_regs_fifo2_requests_step_y;
 assign card1_card_core1_regs_fifo2_requested[0] = card1_card_core1_regs_fifo2_requests_step_x;
 assign card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2_any_flag[6] = card1_card_core1_regs_fifo2_sequencer2_command_header2__reserved_bits2__reserved_class14_flag;
@@ -7042,6 +7048,7 @@ end
 
 
 assign card1_card_core1_regs_fifo2_direct_pulse4_command_busy = (card1_card_core1_regs_fifo2_direct_pulse4_command_load || card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
+assign card1_card_core1_regs_fifo2_direct_pulse4_command_running = (card1_card_core1_regs_fifo2_direct_pulse4_pending || card1_card_core1_regs_fifo2_direct_request_x);
 
 
 
@@ -7141,6 +7148,7 @@ end
 
 
 assign card1_card_core1_regs_fifo2_direct_pulse5_command_busy = (card1_card_core1_regs_fifo2_direct_pulse5_command_load || card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
+assign card1_card_core1_regs_fifo2_direct_pulse5_command_running = (card1_card_core1_regs_fifo2_direct_pulse5_pending || card1_card_core1_regs_fifo2_direct_request_y);
 
 
 
@@ -8175,7 +8183,7 @@ always @(posedge clock, negedge reset) begin: card1_card_core1_regs_fifo2_write_
 end
 
 
-always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_out_ready, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_command, card1_card_core1_regs_fifo2_any_busy, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_home_cut, card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_control, card1_card_core1_regs_fifo2_tick, card1_card_core1_regs_fifo2_ramp_step, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_command_strobe, card1_card_core1_regs_fifo2_halt, card1_card_core1_regs_fifo2_machine_control) begin: card1_card_core1_regs_fifo2_control_bits
+always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo_empty, card1_card_core1_regs_fifo2_out_ready, card1_card_core1_core_clear, card1_card_core1_regs_fifo2_busy_but_loads, card1_card_core1_regs_fifo2_guard_stopped, card1_card_core1_regs_fifo2_command, card1_card_core1_regs_fifo2_guard_stopping, card1_card_core1_regs_fifo2_home_cut, card1_card_core1_regs_fifo2_outputs_busy, card1_card_core1_regs_fifo2_control, card1_card_core1_regs_fifo2_tick, card1_card_core1_regs_fifo2_ramp_step, card1_card_core1_regs_fifo2_conditioning_active, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_command_strobe, card1_card_core1_regs_fifo2_halt, card1_card_core1_regs_fifo2_machine_control) begin: card1_card_core1_regs_fifo2_control_bits
     card1_card_core1_regs_fifo2_enable = (card1_card_core1_regs_fifo2_control[0] && (!card1_card_core1_regs_fifo2_control[1]) && (!card1_card_core1_regs_fifo2_halt) && (!card1_card_core1_regs_fifo2_home_busy));
     card1_card_core1_regs_fifo2_direct_mode = card1_card_core1_regs_fifo2_control[1];
     card1_card_core1_regs_fifo2_clear_error = (card1_card_core1_regs_fifo2_command_strobe && card1_card_core1_regs_fifo2_command[1]);
@@ -8188,7 +8196,7 @@ always @(card1_card_core1_regs_fifo2_feed_held, card1_card_core1_regs_fifo2_fifo
     card1_card_core1_regs_fifo2_direct_ready = (card1_card_core1_regs_fifo2_out_ready && (!card1_card_core1_regs_fifo2_guard_stopping));
     card1_card_core1_regs_fifo2_pulse_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_halt);
     card1_card_core1_regs_fifo2_sequencer_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_guard_stopped);
-    card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_any_busy) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
+    card1_card_core1_regs_fifo2_home_idle = ((!card1_card_core1_regs_fifo2_busy_but_loads) && card1_card_core1_regs_fifo2_fifo_empty && (!card1_card_core1_regs_fifo2_guard_stopped) && (!card1_card_core1_regs_fifo2_halt));
     card1_card_core1_regs_fifo2_direct_clear = (card1_card_core1_core_clear || card1_card_core1_regs_fifo2_home_cut);
     card1_card_core1_regs_fifo2_drive_cleared = 0;
     if (card1_card_core1_regs_fifo2_guard_stopped) begin
@@ -8231,6 +8239,7 @@ assign card1_card_core1_regs_fifo2_outputs_busy = ((card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
 assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || (card1_card_core1_regs_fifo2_direct_busy != 0) || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
+assign card1_card_core1_regs_fifo2_busy_but_loads = (card1_card_core1_regs_fifo2_seq_busy || (card1_card_core1_regs_fifo2_direct_running != 0) || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
 
 
 
@@ -9024,7 +9033,9 @@ end
 
 always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_captures
     reg sign;
+    reg same;
     sign = card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(49 - 1)];
+    same = ((card1_card_core1_dda_axes1_dda_arc2_dda_setup2_gap[(24 + 1)-1:0] ^ card1_card_core1_dda_axes1_dda_arc2_dda_setup2_operand[(24 + 1)-1:0]) == ((1 << (24 + 1)) - 1));
     case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_state)
         3'b010: begin
             case (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_step)
@@ -9033,11 +9044,11 @@ always @(posedge clock) begin: card1_card_core1_dda_axes1_dda_arc2_dda_setup2_ca
                 end
                 'h4: begin
                     card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_x <= sign;
-                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_x <= same;
                 end
                 'h6: begin
                     card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_below_y <= sign;
-                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_y <= (card1_card_core1_dda_axes1_dda_arc2_dda_setup2_total[(24 + 1)-1:0] == 0);
+                    card1_card_core1_dda_axes1_dda_arc2_dda_setup2_plan_start_same_y <= same;
                 end
             endcase
         end

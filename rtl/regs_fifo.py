@@ -157,6 +157,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     settled, direct_ready = Signal(bool(0)), Signal(bool(1))   # guard.held; direct pulses wait while stopping
     direct_out = [StepRequest(ready=direct_ready) for _ in axis_names]
     direct_busy = ConcatSignal(*reversed([d.busy for d in direct]))
+    direct_running = ConcatSignal(*reversed([d.running for d in direct]))
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
     axis_regs = AxisBlock(axes, len(local.addr), addr=local.addr, read=io_read, positions=position,
                           pos_words=[hw[f"POS_{name}"] for name in axis_names[2:]])
@@ -164,7 +165,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     tick, hold = feed.tick, feed.hold
     fifo_flush, soft_reset_taken = Signal(bool(0)), Signal(bool(0))
     requested_before, out_active_before = Signal(bool(0)), Signal(bool(0))
-    any_busy = Signal(bool(0))
+    any_busy, busy_but_loads = Signal(bool(0)), Signal(bool(0))
     pos_y_snapshot = axis_regs.held.y
 
     drive_bit, hold_bit = _bit("MACHINE_CONTROL", "DRIVE_ENABLE"), _bit("MACHINE_CONTROL", "HOLD")
@@ -288,8 +289,11 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         pulse_clear.next = core_clear or halt
         # held while stopped: the sequencer takes no word from the FIFO
         sequencer_clear.next = core_clear or guard.stopped
-        # HOME starts only with nothing queued, moving or stopped; its cut clears the direct pulses
-        home_idle.next = not any_busy and fifo_empty and not guard.stopped and not halt
+        # HOME starts only with nothing queued, moving or stopped; its cut clears the direct pulses.
+        # Only a HOME write starts it, so no PULSE_COUNT write loads in that clock (one register
+        # write a clock; a PULSE command's load comes with the sequencer busy): busy_but_loads
+        # leaves the loads, and the halt behind them, out of this decision
+        home_idle.next = not busy_but_loads and fifo_empty and not guard.stopped and not halt
         direct_clear.next = core_clear or home.cut
         # a stop clears MACHINE_CONTROL.DRIVE_ENABLE and holds it at 0: CLEAR_STOP does not re-energise
         drive_cleared.next = 0
@@ -348,6 +352,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
         hold.next = not out_ready
         dda.advance.next = tick and out_ready and motion_run
         any_busy.next = seq_busy or direct_busy != 0 or out_active or dda.busy or home.busy
+        busy_but_loads.next = seq_busy or direct_running != 0 or out_active or dda.busy or home.busy
 
     @always_comb
     def merge_requests():

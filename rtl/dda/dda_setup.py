@@ -186,17 +186,20 @@ def dda_setup(clock, reset, cmd, plan):
 
     @always(clock.posedge)
     def captures():
-        # results read from the adder's total at the edge that forms them
+        # results read from the adder's total at the edge that forms them; |s| == |e| is the
+        # low bits of gap + operand + 1 (the carry is set at steps 4 and 6) being zero, which is
+        # gap ^ operand being all ones there: a test with no carry chain in front
         sign = total[gap_width - 1]
+        same = (gap[width + 1:] ^ operand[width + 1:]) == (1 << (width + 1)) - 1
         if state == t_setup.S_PRE:
             if step == 2:
                 m_is_y.next = sign
             elif step == 4:
                 plan.start_below_x.next = sign
-                plan.start_same_x.next = total[width + 1:] == 0
+                plan.start_same_x.next = same
             elif step == 6:
                 plan.start_below_y.next = sign
-                plan.start_same_y.next = total[width + 1:] == 0
+                plan.start_same_y.next = same
         elif state == t_setup.S_LIMIT:
             if step == 1:
                 within_outer.next = sign

@@ -330,14 +330,16 @@ class DirectPulseCommand:
     reset) and ``retarget`` (one clock: ``count``'s size becomes the pulses
     still to go, in the direction under way, the period's timing goes on:
     homing's back-off); the generator drives ``remaining`` (pulses still to
-    go) and ``busy`` (from ``load`` until the last request)."""
+    go), ``busy`` (from ``load`` until the last request) and ``running``
+    (``busy`` but for the clock of ``load``: from registers only)."""
 
     def __init__(self, **given):
         bounds = dict(min=-(1 << (PULSE_COUNT_BITS - 1)), max=1 << (PULSE_COUNT_BITS - 1))
         period = regmap.register("PULSE_PERIOD_X")
         adopt(self, given, load=Signal(bool(0)), count=Signal(intbv(0, **bounds)),
                period=Signal(intbv(period.reset)[period.width:]), clear=Signal(bool(0)), retarget=Signal(bool(0)),
-               remaining=Signal(intbv(0)[PULSE_COUNT_BITS:]), busy=Signal(bool(0)))
+               remaining=Signal(intbv(0)[PULSE_COUNT_BITS:]), busy=Signal(bool(0)),
+               running=Signal(bool(0)))
 
 
 class StepRequest:

@@ -14,7 +14,8 @@ def direct_pulse(clock, reset, command, out):
     ``out``: ``StepRequest``) is made every ``period`` clocks (>= 1) while
     ``out.ready``, the first one the clock after ``load``.  ``remaining``
     counts what is left, ``busy`` is high from ``load`` until the last
-    request, that request's clock included.  ``clear`` stops.  ``retarget``
+    request, that request's clock included; ``running`` the same but for
+    the clock of ``load``.  ``clear`` stops.  ``retarget``
     makes |``count``| what is left from this clock on (a request in this
     clock is the first of them; 0 stops), without touching the direction or
     the period's count: the next request comes when it would have come.
@@ -51,6 +52,7 @@ def direct_pulse(clock, reset, command, out):
         # the clock of the last request too: that step is not yet in the pulse
         # outputs, so the card is not idle (a HOME then is refused)
         command.busy.next = command.load or pending or out.step
+        command.running.next = pending or out.step
 
     @always_comb
     def decide():

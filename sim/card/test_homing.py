@@ -101,6 +101,33 @@ def test_switch_that_does_not_release_within_search():
     assert words["position"] == pin_log.path()[-1] and words["position"][1] == switch.position
 
 
+
+def test_home_refused_while_direct_pulses_run():
+    """HOME while direct pulses run (CONTROL.MODE 1) is refused and every pulse
+    of PULSE_COUNT comes out; once they have, a HOME homes."""
+    switch = BouncingSwitch(trip=8, seed=4)
+    count, period = -6, 40
+    words = {}
+
+    def scenario(driver, pins, pin_log, machine_log):
+        yield from arm(driver)
+        yield from write(driver, "CONTROL", regmap.field_of("CONTROL", MODE=1))
+        yield from write(driver, "PULSE_PERIOD_Y", period)
+        yield from write(driver, "PULSE_COUNT_Y", count & 0xFFFFFFFF)
+        yield from home(driver, 0, False)
+        words["during_pulses"] = yield from wait_homed(driver)
+        words["left"] = yield from read(driver, "PULSE_COUNT_Y")
+        yield from wait_idle(driver)
+        words["pulsed"] = yield from read_position(driver)
+        yield from home(driver, 0, False)
+        words["after"] = yield from wait_homed(driver)
+
+    pin_log, _ = run_machine("home_refused_direct", scenario, switches=[("x", switch)])
+    assert outcome(words["during_pulses"]) == dict(BUSY=0, DONE=0, NOT_FOUND=0, REFUSED=1, PHASE=0)
+    assert 0 < words["left"] < -count
+    assert words["pulsed"] == (0, count)
+    assert outcome(words["after"])["DONE"] == 1
+
 @pytest.mark.parametrize("cause", ["limit_pos_x", "estop"])
 def test_limit_or_estop_stops_homing(cause):
     """A stop during the seek ends homing as it ends any move: no DONE, no
