@@ -200,8 +200,11 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
     ``direction``, products, D = ``first_remainder``); the decision at
     each ``helix.advance``, applied the clock after (``pending``) with the
     arc's registered ``took_u``, ``took_v``, ``u_inward`` and ``area_run``
-    (W).  ``moving``: steps are left (a register beside the count, so that no
-    count's zero test lies before the decision or ``following``)."""
+    (W).  ``moving``: steps are left.  A step leaves the count at the edge
+    after its own (``step``, registered, is the count's enable, so the
+    decision reaches one flip-flop only); ``moving`` counts it at once,
+    from the flags beside the count (zero, one) and ``step``, so no zero
+    test of the count lies before the decision or ``following``."""
     width = len(magnitude)
     area_bits = len(area_run)
     product_bits = 2 * width
@@ -214,6 +217,7 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
     next_remainder = Signal(modbv(0)[area_bits + 1:])
     rise = Signal(intbv(0)[width:])
     steps_left = Signal(intbv(0)[width:])
+    left_zero, left_one = Signal(bool(1)), Signal(bool(0))   # steps_left == 0, == 1
     covers_u, covers_v, covers_uv, covers_none, stepping = (Signal(bool(0)) for _ in range(5))
     progress = helix.progress
 
@@ -305,13 +309,23 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
             wait_v.next = concat(wait_v[product_bits - 1:], False) + add_v
             wait_uv.next = concat(wait_uv[product_bits - 1:], False) + add_uv
 
+    @always_comb
+    def count_flags():
+        # steps_left less the step of the clock before, which leaves it at this edge
+        moving.next = not left_zero and not (left_one and step)
+
     @always_seq(clock.posedge, reset=reset)
     def run():
         step.next = 0
+        if step:
+            steps_left.next = steps_left - 1
+            left_zero.next = left_one
+            left_one.next = steps_left == 2
         if helix.load:
             rise.next = magnitude
             steps_left.next = magnitude
-            moving.next = magnitude != 0
+            left_zero.next = magnitude == 0
+            left_one.next = magnitude == 1
             direction.next = positive
             prod_u.next = wait_u
             prod_v.next = wait_v
@@ -319,9 +333,6 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
             remainder.next = first_remainder
         elif helix.advance:
             step.next = stepping
-            if stepping:
-                steps_left.next = steps_left - 1
-                moving.next = steps_left != 1
         elif pending:
             remainder.next = next_remainder
             # the products follow |u| and |v|: each +- |h| on a step of its coordinate; a diagonal keeps the sum
@@ -332,4 +343,4 @@ def _axis_helix(clock, reset, helix, magnitude, positive, building, bit_u, bit_v
             if took_u != took_v:
                 prod_uv.next = next_uv
 
-    return compare, decide, apply, follow, build, run
+    return compare, decide, apply, follow, build, count_flags, run
