@@ -2,6 +2,7 @@
 its waves, ``sim/backends/waves.py``); leaves some cases of parametrised tests to the slow
 set (``SLOW_CASES``)."""
 import pytest
+from myhdl import _simulator
 
 from sim.backends import waves
 
@@ -20,6 +21,19 @@ def pytest_configure(config):
 def _waves_named_after_the_test(request):
     with waves.named_after(request.node.nodeid):
         yield
+
+
+@pytest.fixture(autouse=True)
+def _myhdl_forgets_the_signals_of_the_test():
+    """MyHDL keeps every Signal a process ever made in one list and goes over all of it at
+    each simulation's start (the waiters of slices and concatenations) and end (every signal
+    reset, two deep copies each): late in a test worker that made millions, a bench of ten
+    clocks took half a second instead of 0.05.  The signals made during a test (its call and
+    its function-scoped fixtures) are of its own benches, run and finished by its end: they
+    leave the list then.  Those of wider-scoped fixtures, made before, stay."""
+    made_before = len(_simulator._signals)
+    yield
+    del _simulator._signals[made_before:]
 
 
 # Cases of parametrised tests left to the slow set, by node id, each with why:

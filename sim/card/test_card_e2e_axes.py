@@ -16,7 +16,7 @@ from models.axes import PLANES
 from models.dda_axes import with_area
 from models.dda_plan import ArcCommand, AxesLineCommand
 from sim.card.card_bench import axes_path
-from sim.card.card_e2e import motion_scenario, run_card
+from sim.card.card_e2e import DEFAULT_FIFO, motion_scenario, run_card
 
 G17, G18, G19 = PLANES[17], PLANES[18], PLANES[19]
 RAMP = dict(feed=16384, ramp_start=2048, ramp_step=512)
@@ -43,7 +43,9 @@ FOUR = [line(30, -20, 10, 55, blend=True), ArcCommand(40, 0, 0, 40, plane=(3, 2)
 
 
 def _run(kind, commands, axes, name, **ramp):
-    out, log, _, _ = run_card(kind, motion_scenario(commands, **ramp), name, axes=axes)
+    # the default FIFO: the three-axis Verilator model is the one the host's three-axis tests
+    # build (tests/host/test_card_axes.py), not a build of its own
+    out, log, _, _ = run_card(kind, motion_scenario(commands, **ramp), name, fifo_depth=DEFAULT_FIFO, axes=axes)
     assert regmap.field_value("STATUS", "ERROR", out["status"]) == 0
     assert regmap.field_value("INT_STATUS", "DONE", out["int_status"]) == 1
     return out, log
