@@ -279,6 +279,7 @@ reg [31:0] card_core0_regs_fifo1_byte_mask;
 reg card_core0_regs_fifo1_clear_error;
 reg card_core0_regs_fifo1_clear_position;
 reg card_core0_regs_fifo1_clear_stop;
+wire [1:0] card_core0_regs_fifo1_direct_asked;
 wire [1:0] card_core0_regs_fifo1_direct_busy;
 reg card_core0_regs_fifo1_direct_clear;
 reg card_core0_regs_fifo1_direct_mode;
@@ -989,6 +990,7 @@ reg card_core0_regs_fifo1_feed_rate1_step_zero;
 reg [15:0] card_core0_regs_fifo1_feed_rate1_target_s;
 wire [16:0] card_core0_regs_fifo1_feed_rate1_total;
 wire [26:0] card_core0_regs_fifo1_feed_rate1_feed_stop_left;
+wire card_core0_regs_fifo1_direct_pulse2_can_step;
 reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_addend;
 reg [23:0] card_core0_regs_fifo1_direct_pulse2_count_operand;
 wire [23:0] card_core0_regs_fifo1_direct_pulse2_counted;
@@ -1005,6 +1007,7 @@ wire card_core0_regs_fifo1_direct_pulse2_command_running;
 reg card_core0_regs_fifo1_direct_pulse2_command_retarget;
 reg signed [23:0] card_core0_regs_fifo1_direct_pulse2_command_count;
 reg [15:0] card_core0_regs_fifo1_direct_pulse2_command_period;
+wire card_core0_regs_fifo1_direct_pulse3_can_step;
 reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_addend;
 reg [23:0] card_core0_regs_fifo1_direct_pulse3_count_operand;
 wire [23:0] card_core0_regs_fifo1_direct_pulse3_counted;
@@ -1128,6 +1131,8 @@ reg [15:0] card_core0_regs_fifo1_homing1_port_period;
 reg card_core0_regs_fifo1_homing1_port_retarget;
 reg card_core0_regs_fifo1_homing1_port_ended;
 reg card_core0_regs_fifo1_homing1_port_load;
+reg card_core0_regs_fifo1_pulse_source2_command_asked;
+reg card_core0_regs_fifo1_pulse_source3_command_asked;
 reg card_core0_regs_fifo1_status_words1_busy_before;
 reg card_core0_regs_fifo1_status_words1_done_flag;
 reg card_core0_regs_fifo1_status_words1_error_before;
@@ -1340,6 +1345,8 @@ assign card_core0_regs_fifo1_machine_guard1_lagging = 1'd0;
 assign card_core0_regs_fifo1_machine_guard1_lagging_axis = 3'd0;
 assign card_core0_regs_fifo1_status_words1_words_index_fired = 1'd0;
 assign card_core0_regs_fifo1_status_words1_words_probe_fired = 1'd0;
+assign card_core0_regs_fifo1_direct_asked[1] = card_core0_regs_fifo1_pulse_source3_command_asked;
+assign card_core0_regs_fifo1_direct_asked[0] = card_core0_regs_fifo1_pulse_source2_command_asked;
 assign card_core0_regs_fifo1_direct_busy[1] = card_core0_regs_fifo1_direct_pulse3_command_busy;
 assign card_core0_regs_fifo1_direct_busy[0] = card_core0_regs_fifo1_direct_pulse2_command_busy;
 assign card_core0_regs_fifo1_direct_running[1] = card_core0_regs_fifo1_direct_pulse3_command_running;
@@ -6221,11 +6228,12 @@ assign card_core0_regs_fifo1_direct_pulse2_command_running = (card_core0_regs_fi
 
 
 
-assign card_core0_regs_fifo1_direct_pulse2_may_step = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready && (card_core0_regs_fifo1_direct_pulse2_command_retarget || card_core0_regs_fifo1_direct_pulse2_pending));
+assign card_core0_regs_fifo1_direct_pulse2_can_step = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse2_waiting) && card_core0_regs_fifo1_direct_ready);
+assign card_core0_regs_fifo1_direct_pulse2_may_step = (card_core0_regs_fifo1_direct_pulse2_can_step && (!card_core0_regs_fifo1_direct_pulse2_command_load) && (card_core0_regs_fifo1_direct_pulse2_command_retarget || card_core0_regs_fifo1_direct_pulse2_pending));
 assign card_core0_regs_fifo1_direct_pulse2_stepping = (card_core0_regs_fifo1_direct_pulse2_may_step && (!(card_core0_regs_fifo1_direct_pulse2_command_retarget && (card_core0_regs_fifo1_direct_pulse2_command_count == 0))));
 
 
-always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word60_shown, card_core0_regs_fifo1_direct_pulse2_may_step, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
+always @(card_core0_regs_fifo1_direct_pulse2_can_step, card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_fifo1_reg_word60_shown, card_core0_regs_fifo1_direct_pulse2_command_load, card_core0_regs_fifo1_direct_pulse2_command_count) begin: card_core0_regs_fifo1_direct_pulse2_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse2_command_load) && (!card_core0_regs_fifo1_direct_pulse2_command_retarget))) begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_reg_word60_shown;
         card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
@@ -6233,14 +6241,14 @@ always @(card_core0_regs_fifo1_direct_pulse2_command_retarget, card_core0_regs_f
     else if ((card_core0_regs_fifo1_direct_pulse2_command_count < 0)) begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = (~card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0]);
         card_core0_regs_fifo1_direct_pulse2_count_addend = 1;
-        if (card_core0_regs_fifo1_direct_pulse2_may_step) begin
+        if ((card_core0_regs_fifo1_direct_pulse2_can_step && (!card_core0_regs_fifo1_direct_pulse2_command_load))) begin
             card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
         end
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_count_operand = card_core0_regs_fifo1_direct_pulse2_command_count[24-1:0];
         card_core0_regs_fifo1_direct_pulse2_count_addend = 0;
-        if (card_core0_regs_fifo1_direct_pulse2_may_step) begin
+        if ((card_core0_regs_fifo1_direct_pulse2_can_step && (!card_core0_regs_fifo1_direct_pulse2_command_load))) begin
             card_core0_regs_fifo1_direct_pulse2_count_addend = 16777215;
         end
     end
@@ -6321,11 +6329,12 @@ assign card_core0_regs_fifo1_direct_pulse3_command_running = (card_core0_regs_fi
 
 
 
-assign card_core0_regs_fifo1_direct_pulse3_may_step = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready && (card_core0_regs_fifo1_direct_pulse3_command_retarget || card_core0_regs_fifo1_direct_pulse3_pending));
+assign card_core0_regs_fifo1_direct_pulse3_can_step = ((!card_core0_regs_fifo1_direct_clear) && (!card_core0_regs_fifo1_direct_pulse3_waiting) && card_core0_regs_fifo1_direct_ready);
+assign card_core0_regs_fifo1_direct_pulse3_may_step = (card_core0_regs_fifo1_direct_pulse3_can_step && (!card_core0_regs_fifo1_direct_pulse3_command_load) && (card_core0_regs_fifo1_direct_pulse3_command_retarget || card_core0_regs_fifo1_direct_pulse3_pending));
 assign card_core0_regs_fifo1_direct_pulse3_stepping = (card_core0_regs_fifo1_direct_pulse3_may_step && (!(card_core0_regs_fifo1_direct_pulse3_command_retarget && (card_core0_regs_fifo1_direct_pulse3_command_count == 0))));
 
 
-always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word61_shown, card_core0_regs_fifo1_direct_pulse3_may_step, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
+always @(card_core0_regs_fifo1_direct_pulse3_can_step, card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_fifo1_reg_word61_shown, card_core0_regs_fifo1_direct_pulse3_command_load, card_core0_regs_fifo1_direct_pulse3_command_count) begin: card_core0_regs_fifo1_direct_pulse3_count_operands
     if (((!card_core0_regs_fifo1_direct_pulse3_command_load) && (!card_core0_regs_fifo1_direct_pulse3_command_retarget))) begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_reg_word61_shown;
         card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
@@ -6333,14 +6342,14 @@ always @(card_core0_regs_fifo1_direct_pulse3_command_retarget, card_core0_regs_f
     else if ((card_core0_regs_fifo1_direct_pulse3_command_count < 0)) begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = (~card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0]);
         card_core0_regs_fifo1_direct_pulse3_count_addend = 1;
-        if (card_core0_regs_fifo1_direct_pulse3_may_step) begin
+        if ((card_core0_regs_fifo1_direct_pulse3_can_step && (!card_core0_regs_fifo1_direct_pulse3_command_load))) begin
             card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
         end
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_count_operand = card_core0_regs_fifo1_direct_pulse3_command_count[24-1:0];
         card_core0_regs_fifo1_direct_pulse3_count_addend = 0;
-        if (card_core0_regs_fifo1_direct_pulse3_may_step) begin
+        if ((card_core0_regs_fifo1_direct_pulse3_can_step && (!card_core0_regs_fifo1_direct_pulse3_command_load))) begin
             card_core0_regs_fifo1_direct_pulse3_count_addend = 16777215;
         end
     end
@@ -7403,12 +7412,12 @@ end
 
 
 
-assign card_core0_regs_fifo1_pulse_busy = (card_core0_regs_fifo1_direct_busy != 0);
+assign card_core0_regs_fifo1_pulse_busy = ((card_core0_regs_fifo1_direct_running != 0) || (card_core0_regs_fifo1_direct_asked != 0));
 assign card_core0_regs_fifo1_outputs_busy = ((card_core0_regs_fifo1_requested != 0) || card_core0_regs_fifo1_requested_before || card_core0_regs_fifo1_out_active_before);
 assign card_core0_regs_fifo1_hold = (!card_core0_regs_fifo1_out_ready);
 assign card_core0_regs_fifo1_dda_advance = (card_core0_regs_fifo1_tick && card_core0_regs_fifo1_out_ready && card_core0_regs_fifo1_motion_run);
-assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_seq_busy || (card_core0_regs_fifo1_direct_busy != 0) || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
 assign card_core0_regs_fifo1_busy_but_loads = (card_core0_regs_fifo1_seq_busy || (card_core0_regs_fifo1_direct_running != 0) || card_core0_regs_fifo1_out_active || card_core0_regs_fifo1_dda_busy || card_core0_regs_fifo1_home_busy);
+assign card_core0_regs_fifo1_any_busy = (card_core0_regs_fifo1_busy_but_loads || (card_core0_regs_fifo1_direct_busy != 0));
 
 
 
@@ -7422,39 +7431,45 @@ assign card_core0_regs_fifo1_requests_dir_y = card_core0_regs_fifo1_steps_step_y
 assign card_core0_regs_fifo1_level_wide = {6'h0, card_core0_regs_fifo1_fifo_level};
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word60__store42_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word60__store42_word_value, card_core0_regs_fifo1_reg_word58_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_conditioning_active[0], card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source2_choose_source
     card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_reg_word58_shown;
     card_core0_regs_fifo1_direct_pulse2_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
     if (card_core0_regs_fifo1_home_busy) begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
+        card_core0_regs_fifo1_pulse_source2_command_asked = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 0));
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse2_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_reg_word60__store42_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_pulse_source2_command_asked = (card_core0_regs_fifo1_reg_word60__store42_word_strobe && (!card_core0_regs_fifo1_conditioning_active[0]));
         card_core0_regs_fifo1_direct_pulse2_command_count = $signed(card_core0_regs_fifo1_reg_word60__store42_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse2_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask[0]);
+        card_core0_regs_fifo1_pulse_source2_command_asked = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask[0]);
         card_core0_regs_fifo1_direct_pulse2_command_count = card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_x;
     end
 end
 
 
-always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
+always @(card_core0_regs_fifo1_homing1_port_count, card_core0_regs_fifo1_seq_load, card_core0_regs_fifo1_reg_word72_shown[7-1:4], card_core0_regs_fifo1_homing1_port_retarget, card_core0_regs_fifo1_reg_word61__store43_word_strobe, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask, card_core0_regs_fifo1_homing1_port_period, card_core0_regs_fifo1_reg_word61__store43_word_value, card_core0_regs_fifo1_reg_word59_shown, card_core0_regs_fifo1_homing1_port_load, card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y, card_core0_regs_fifo1_direct_mode, card_core0_regs_fifo1_home_busy, card_core0_regs_fifo1_conditioning_active[0], card_core0_regs_fifo1_halt) begin: card_core0_regs_fifo1_pulse_source3_choose_source
     card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_reg_word59_shown;
     card_core0_regs_fifo1_direct_pulse3_command_retarget = (card_core0_regs_fifo1_home_busy && card_core0_regs_fifo1_homing1_port_retarget && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
     if (card_core0_regs_fifo1_home_busy) begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
+        card_core0_regs_fifo1_pulse_source3_command_asked = (card_core0_regs_fifo1_homing1_port_load && (card_core0_regs_fifo1_reg_word72_shown[7-1:4] == 1));
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_homing1_port_count;
         card_core0_regs_fifo1_direct_pulse3_command_period = card_core0_regs_fifo1_homing1_port_period;
     end
     else if (card_core0_regs_fifo1_direct_mode) begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_reg_word61__store43_word_strobe && (!card_core0_regs_fifo1_halt));
+        card_core0_regs_fifo1_pulse_source3_command_asked = (card_core0_regs_fifo1_reg_word61__store43_word_strobe && (!card_core0_regs_fifo1_conditioning_active[0]));
         card_core0_regs_fifo1_direct_pulse3_command_count = $signed(card_core0_regs_fifo1_reg_word61__store43_word_value);
     end
     else begin
         card_core0_regs_fifo1_direct_pulse3_command_load = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask[1]);
+        card_core0_regs_fifo1_pulse_source3_command_asked = (card_core0_regs_fifo1_seq_load && card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_mask[1]);
         card_core0_regs_fifo1_direct_pulse3_command_count = card_core0_regs_fifo1_sequencer1_two_axis_operands1_pulses_count_y;
     end
 end

@@ -194,6 +194,7 @@ reg [31:0] byte_mask;
 reg clear_error;
 reg clear_position;
 reg clear_stop;
+wire [1:0] direct_asked;
 wire [1:0] direct_busy;
 reg direct_clear;
 reg direct_mode;
@@ -883,6 +884,7 @@ reg [15:0] feed_rate0_step_s;
 reg feed_rate0_step_zero;
 reg [15:0] feed_rate0_target_s;
 wire [16:0] feed_rate0_total;
+wire direct_pulse0_can_step;
 reg [23:0] direct_pulse0_count_addend;
 reg [23:0] direct_pulse0_count_operand;
 wire [23:0] direct_pulse0_counted;
@@ -899,6 +901,7 @@ wire direct_pulse0_command_running;
 reg direct_pulse0_command_retarget;
 reg signed [23:0] direct_pulse0_command_count;
 reg [15:0] direct_pulse0_command_period;
+wire direct_pulse1_can_step;
 reg [23:0] direct_pulse1_count_addend;
 reg [23:0] direct_pulse1_count_operand;
 wire [23:0] direct_pulse1_counted;
@@ -1022,6 +1025,8 @@ reg [15:0] homing0_port_period;
 reg homing0_port_retarget;
 reg homing0_port_ended;
 reg homing0_port_load;
+reg pulse_source0_command_asked;
+reg pulse_source1_command_asked;
 reg status_words0_busy_before;
 reg status_words0_done_flag;
 reg status_words0_error_before;
@@ -1062,6 +1067,8 @@ assign machine_guard0_lagging = 1'd0;
 assign machine_guard0_lagging_axis = 3'd0;
 assign status_words0_words_index_fired = 1'd0;
 assign status_words0_words_probe_fired = 1'd0;
+assign direct_asked[1] = pulse_source1_command_asked;
+assign direct_asked[0] = pulse_source0_command_asked;
 assign direct_busy[1] = direct_pulse1_command_busy;
 assign direct_busy[0] = direct_pulse0_command_busy;
 assign direct_running[1] = direct_pulse1_command_running;
@@ -4722,11 +4729,12 @@ assign direct_pulse0_command_running = (direct_pulse0_pending || direct_request_
 
 
 
-assign direct_pulse0_may_step = ((!direct_clear) && (!direct_pulse0_command_load) && (!direct_pulse0_waiting) && direct_ready && (direct_pulse0_command_retarget || direct_pulse0_pending));
+assign direct_pulse0_can_step = ((!direct_clear) && (!direct_pulse0_waiting) && direct_ready);
+assign direct_pulse0_may_step = (direct_pulse0_can_step && (!direct_pulse0_command_load) && (direct_pulse0_command_retarget || direct_pulse0_pending));
 assign direct_pulse0_stepping = (direct_pulse0_may_step && (!(direct_pulse0_command_retarget && (direct_pulse0_command_count == 0))));
 
 
-always @(direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_may_step, direct_pulse0_command_load, direct_pulse0_command_count) begin: direct_pulse0_count_operands
+always @(direct_pulse0_can_step, direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_command_load, direct_pulse0_command_count) begin: direct_pulse0_count_operands
     if (((!direct_pulse0_command_load) && (!direct_pulse0_command_retarget))) begin
         direct_pulse0_count_operand = reg_word19_shown;
         direct_pulse0_count_addend = 16777215;
@@ -4734,14 +4742,14 @@ always @(direct_pulse0_command_retarget, reg_word19_shown, direct_pulse0_may_ste
     else if ((direct_pulse0_command_count < 0)) begin
         direct_pulse0_count_operand = (~direct_pulse0_command_count[24-1:0]);
         direct_pulse0_count_addend = 1;
-        if (direct_pulse0_may_step) begin
+        if ((direct_pulse0_can_step && (!direct_pulse0_command_load))) begin
             direct_pulse0_count_addend = 0;
         end
     end
     else begin
         direct_pulse0_count_operand = direct_pulse0_command_count[24-1:0];
         direct_pulse0_count_addend = 0;
-        if (direct_pulse0_may_step) begin
+        if ((direct_pulse0_can_step && (!direct_pulse0_command_load))) begin
             direct_pulse0_count_addend = 16777215;
         end
     end
@@ -4822,11 +4830,12 @@ assign direct_pulse1_command_running = (direct_pulse1_pending || direct_request_
 
 
 
-assign direct_pulse1_may_step = ((!direct_clear) && (!direct_pulse1_command_load) && (!direct_pulse1_waiting) && direct_ready && (direct_pulse1_command_retarget || direct_pulse1_pending));
+assign direct_pulse1_can_step = ((!direct_clear) && (!direct_pulse1_waiting) && direct_ready);
+assign direct_pulse1_may_step = (direct_pulse1_can_step && (!direct_pulse1_command_load) && (direct_pulse1_command_retarget || direct_pulse1_pending));
 assign direct_pulse1_stepping = (direct_pulse1_may_step && (!(direct_pulse1_command_retarget && (direct_pulse1_command_count == 0))));
 
 
-always @(direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_may_step, direct_pulse1_command_load, direct_pulse1_command_count) begin: direct_pulse1_count_operands
+always @(direct_pulse1_can_step, direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_command_load, direct_pulse1_command_count) begin: direct_pulse1_count_operands
     if (((!direct_pulse1_command_load) && (!direct_pulse1_command_retarget))) begin
         direct_pulse1_count_operand = reg_word20_shown;
         direct_pulse1_count_addend = 16777215;
@@ -4834,14 +4843,14 @@ always @(direct_pulse1_command_retarget, reg_word20_shown, direct_pulse1_may_ste
     else if ((direct_pulse1_command_count < 0)) begin
         direct_pulse1_count_operand = (~direct_pulse1_command_count[24-1:0]);
         direct_pulse1_count_addend = 1;
-        if (direct_pulse1_may_step) begin
+        if ((direct_pulse1_can_step && (!direct_pulse1_command_load))) begin
             direct_pulse1_count_addend = 0;
         end
     end
     else begin
         direct_pulse1_count_operand = direct_pulse1_command_count[24-1:0];
         direct_pulse1_count_addend = 0;
-        if (direct_pulse1_may_step) begin
+        if ((direct_pulse1_can_step && (!direct_pulse1_command_load))) begin
             direct_pulse1_count_addend = 16777215;
         end
     end
@@ -5904,12 +5913,12 @@ end
 
 
 
-assign pulse_busy = (direct_busy != 0);
+assign pulse_busy = ((direct_running != 0) || (direct_asked != 0));
 assign outputs_busy = ((requested != 0) || requested_before || out_active_before);
 assign hold = (!out_ready);
 assign dda_advance = (tick && out_ready && motion_run);
-assign any_busy = (seq_busy || (direct_busy != 0) || out_active || dda_busy || home_busy);
 assign busy_but_loads = (seq_busy || (direct_running != 0) || out_active || dda_busy || home_busy);
+assign any_busy = (busy_but_loads || (direct_busy != 0));
 
 
 
@@ -5923,39 +5932,45 @@ assign requests_dir_y = steps_step_y ? steps_dir_y : direct_dir_y;
 assign level_wide = {6'h0, fifo_level};
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_x, direct_mode, home_busy, halt) begin: pulse_source0_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word19__store14_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word19__store14_word_value, reg_word17_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_x, direct_mode, home_busy, conditioning_active[0], halt) begin: pulse_source0_choose_source
     direct_pulse0_command_period = reg_word17_shown;
     direct_pulse0_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 0));
     if (home_busy) begin
         direct_pulse0_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 0));
+        pulse_source0_command_asked = (homing0_port_load && (reg_word31_shown[7-1:4] == 0));
         direct_pulse0_command_count = homing0_port_count;
         direct_pulse0_command_period = homing0_port_period;
     end
     else if (direct_mode) begin
         direct_pulse0_command_load = (reg_word19__store14_word_strobe && (!halt));
+        pulse_source0_command_asked = (reg_word19__store14_word_strobe && (!conditioning_active[0]));
         direct_pulse0_command_count = $signed(reg_word19__store14_word_value);
     end
     else begin
         direct_pulse0_command_load = (seq_load && sequencer0_two_axis_operands0_pulses_mask[0]);
+        pulse_source0_command_asked = (seq_load && sequencer0_two_axis_operands0_pulses_mask[0]);
         direct_pulse0_command_count = sequencer0_two_axis_operands0_pulses_count_x;
     end
 end
 
 
-always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_y, direct_mode, home_busy, halt) begin: pulse_source1_choose_source
+always @(homing0_port_count, seq_load, reg_word31_shown[7-1:4], homing0_port_retarget, reg_word20__store15_word_strobe, sequencer0_two_axis_operands0_pulses_mask, homing0_port_period, reg_word20__store15_word_value, reg_word18_shown, homing0_port_load, sequencer0_two_axis_operands0_pulses_count_y, direct_mode, home_busy, conditioning_active[0], halt) begin: pulse_source1_choose_source
     direct_pulse1_command_period = reg_word18_shown;
     direct_pulse1_command_retarget = (home_busy && homing0_port_retarget && (reg_word31_shown[7-1:4] == 1));
     if (home_busy) begin
         direct_pulse1_command_load = (homing0_port_load && (reg_word31_shown[7-1:4] == 1));
+        pulse_source1_command_asked = (homing0_port_load && (reg_word31_shown[7-1:4] == 1));
         direct_pulse1_command_count = homing0_port_count;
         direct_pulse1_command_period = homing0_port_period;
     end
     else if (direct_mode) begin
         direct_pulse1_command_load = (reg_word20__store15_word_strobe && (!halt));
+        pulse_source1_command_asked = (reg_word20__store15_word_strobe && (!conditioning_active[0]));
         direct_pulse1_command_count = $signed(reg_word20__store15_word_value);
     end
     else begin
         direct_pulse1_command_load = (seq_load && sequencer0_two_axis_operands0_pulses_mask[1]);
+        pulse_source1_command_asked = (seq_load && sequencer0_two_axis_operands0_pulses_mask[1]);
         direct_pulse1_command_count = sequencer0_two_axis_operands0_pulses_count_y;
     end
 end

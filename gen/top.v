@@ -302,6 +302,7 @@ reg [31:0] card1_card_core1_regs_fifo2_byte_mask;
 reg card1_card_core1_regs_fifo2_clear_error;
 reg card1_card_core1_regs_fifo2_clear_position;
 reg card1_card_core1_regs_fifo2_clear_stop;
+wire [1:0] card1_card_core1_regs_fifo2_direct_asked;
 wire [1:0] card1_card_core1_regs_fifo2_direct_busy;
 reg card1_card_core1_regs_fifo2_direct_clear;
 reg card1_card_core1_regs_fifo2_direct_mode;
@@ -1012,6 +1013,7 @@ reg card1_card_core1_regs_fifo2_feed_rate2_step_zero;
 reg [15:0] card1_card_core1_regs_fifo2_feed_rate2_target_s;
 wire [16:0] card1_card_core1_regs_fifo2_feed_rate2_total;
 wire [26:0] card1_card_core1_regs_fifo2_feed_rate2_feed_stop_left;
+wire card1_card_core1_regs_fifo2_direct_pulse4_can_step;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_addend;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse4_count_operand;
 wire [23:0] card1_card_core1_regs_fifo2_direct_pulse4_counted;
@@ -1028,6 +1030,7 @@ wire card1_card_core1_regs_fifo2_direct_pulse4_command_running;
 reg card1_card_core1_regs_fifo2_direct_pulse4_command_retarget;
 reg signed [23:0] card1_card_core1_regs_fifo2_direct_pulse4_command_count;
 reg [15:0] card1_card_core1_regs_fifo2_direct_pulse4_command_period;
+wire card1_card_core1_regs_fifo2_direct_pulse5_can_step;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_addend;
 reg [23:0] card1_card_core1_regs_fifo2_direct_pulse5_count_operand;
 wire [23:0] card1_card_core1_regs_fifo2_direct_pulse5_counted;
@@ -1151,6 +1154,8 @@ reg [15:0] card1_card_core1_regs_fifo2_homing2_port_period;
 reg card1_card_core1_regs_fifo2_homing2_port_retarget;
 reg card1_card_core1_regs_fifo2_homing2_port_ended;
 reg card1_card_core1_regs_fifo2_homing2_port_load;
+reg card1_card_core1_regs_fifo2_pulse_source4_command_asked;
+reg card1_card_core1_regs_fifo2_pulse_source5_command_asked;
 reg card1_card_core1_regs_fifo2_status_words2_busy_before;
 reg card1_card_core1_regs_fifo2_status_words2_done_flag;
 reg card1_card_core1_regs_fifo2_status_words2_error_before;
@@ -1405,6 +1410,8 @@ assign card1_pci_slave2_pci_boundary2_ad_out_next[3] = card1_pci_slave2_pci_boun
 assign card1_pci_slave2_pci_boundary2_ad_out_next[2] = card1_pci_slave2_pci_boundary2_pin_lut24_out;
 assign card1_pci_slave2_pci_boundary2_ad_out_next[1] = card1_pci_slave2_pci_boundary2_pin_lut23_out;
 assign card1_pci_slave2_pci_boundary2_ad_out_next[0] = card1_pci_slave2_pci_boundary2_pin_lut22_out;
+assign card1_card_core1_regs_fifo2_direct_asked[1] = card1_card_core1_regs_fifo2_pulse_source5_command_asked;
+assign card1_card_core1_regs_fifo2_direct_asked[0] = card1_card_core1_regs_fifo2_pulse_source4_command_asked;
 assign card1_card_core1_regs_fifo2_direct_busy[1] = card1_card_core1_regs_fifo2_direct_pulse5_command_busy;
 assign card1_card_core1_regs_fifo2_direct_busy[0] = card1_card_core1_regs_fifo2_direct_pulse4_command_busy;
 assign card1_card_core1_regs_fifo2_direct_running[1] = card1_card_core1_regs_fifo2_direct_pulse5_command_running;
@@ -7052,11 +7059,12 @@ assign card1_card_core1_regs_fifo2_direct_pulse4_command_running = (card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_direct_pulse4_may_step = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready && (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget || card1_card_core1_regs_fifo2_direct_pulse4_pending));
+assign card1_card_core1_regs_fifo2_direct_pulse4_can_step = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse4_waiting) && card1_card_core1_regs_fifo2_direct_ready);
+assign card1_card_core1_regs_fifo2_direct_pulse4_may_step = (card1_card_core1_regs_fifo2_direct_pulse4_can_step && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (card1_card_core1_regs_fifo2_direct_pulse4_command_retarget || card1_card_core1_regs_fifo2_direct_pulse4_pending));
 assign card1_card_core1_regs_fifo2_direct_pulse4_stepping = (card1_card_core1_regs_fifo2_direct_pulse4_may_step && (!(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse4_command_count == 0))));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word101_shown, card1_card_core1_regs_fifo2_direct_pulse4_may_step, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse4_can_step, card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_core1_regs_fifo2_reg_word101_shown, card1_card_core1_regs_fifo2_direct_pulse4_command_load, card1_card_core1_regs_fifo2_direct_pulse4_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse4_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse4_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse4_command_retarget))) begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_reg_word101_shown;
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
@@ -7064,14 +7072,14 @@ always @(card1_card_core1_regs_fifo2_direct_pulse4_command_retarget, card1_card_
     else if ((card1_card_core1_regs_fifo2_direct_pulse4_command_count < 0)) begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0]);
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 1;
-        if (card1_card_core1_regs_fifo2_direct_pulse4_may_step) begin
+        if ((card1_card_core1_regs_fifo2_direct_pulse4_can_step && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load))) begin
             card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
         end
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_count_operand = card1_card_core1_regs_fifo2_direct_pulse4_command_count[24-1:0];
         card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 0;
-        if (card1_card_core1_regs_fifo2_direct_pulse4_may_step) begin
+        if ((card1_card_core1_regs_fifo2_direct_pulse4_can_step && (!card1_card_core1_regs_fifo2_direct_pulse4_command_load))) begin
             card1_card_core1_regs_fifo2_direct_pulse4_count_addend = 16777215;
         end
     end
@@ -7152,11 +7160,12 @@ assign card1_card_core1_regs_fifo2_direct_pulse5_command_running = (card1_card_c
 
 
 
-assign card1_card_core1_regs_fifo2_direct_pulse5_may_step = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready && (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget || card1_card_core1_regs_fifo2_direct_pulse5_pending));
+assign card1_card_core1_regs_fifo2_direct_pulse5_can_step = ((!card1_card_core1_regs_fifo2_direct_clear) && (!card1_card_core1_regs_fifo2_direct_pulse5_waiting) && card1_card_core1_regs_fifo2_direct_ready);
+assign card1_card_core1_regs_fifo2_direct_pulse5_may_step = (card1_card_core1_regs_fifo2_direct_pulse5_can_step && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (card1_card_core1_regs_fifo2_direct_pulse5_command_retarget || card1_card_core1_regs_fifo2_direct_pulse5_pending));
 assign card1_card_core1_regs_fifo2_direct_pulse5_stepping = (card1_card_core1_regs_fifo2_direct_pulse5_may_step && (!(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget && (card1_card_core1_regs_fifo2_direct_pulse5_command_count == 0))));
 
 
-always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word102_shown, card1_card_core1_regs_fifo2_direct_pulse5_may_step, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
+always @(card1_card_core1_regs_fifo2_direct_pulse5_can_step, card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_core1_regs_fifo2_reg_word102_shown, card1_card_core1_regs_fifo2_direct_pulse5_command_load, card1_card_core1_regs_fifo2_direct_pulse5_command_count) begin: card1_card_core1_regs_fifo2_direct_pulse5_count_operands
     if (((!card1_card_core1_regs_fifo2_direct_pulse5_command_load) && (!card1_card_core1_regs_fifo2_direct_pulse5_command_retarget))) begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_reg_word102_shown;
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
@@ -7164,14 +7173,14 @@ always @(card1_card_core1_regs_fifo2_direct_pulse5_command_retarget, card1_card_
     else if ((card1_card_core1_regs_fifo2_direct_pulse5_command_count < 0)) begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = (~card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0]);
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 1;
-        if (card1_card_core1_regs_fifo2_direct_pulse5_may_step) begin
+        if ((card1_card_core1_regs_fifo2_direct_pulse5_can_step && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load))) begin
             card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
         end
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_count_operand = card1_card_core1_regs_fifo2_direct_pulse5_command_count[24-1:0];
         card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 0;
-        if (card1_card_core1_regs_fifo2_direct_pulse5_may_step) begin
+        if ((card1_card_core1_regs_fifo2_direct_pulse5_can_step && (!card1_card_core1_regs_fifo2_direct_pulse5_command_load))) begin
             card1_card_core1_regs_fifo2_direct_pulse5_count_addend = 16777215;
         end
     end
@@ -8234,12 +8243,12 @@ end
 
 
 
-assign card1_card_core1_regs_fifo2_pulse_busy = (card1_card_core1_regs_fifo2_direct_busy != 0);
+assign card1_card_core1_regs_fifo2_pulse_busy = ((card1_card_core1_regs_fifo2_direct_running != 0) || (card1_card_core1_regs_fifo2_direct_asked != 0));
 assign card1_card_core1_regs_fifo2_outputs_busy = ((card1_card_core1_regs_fifo2_requested != 0) || card1_card_core1_regs_fifo2_requested_before || card1_card_core1_regs_fifo2_out_active_before);
 assign card1_card_core1_regs_fifo2_hold = (!card1_card_core1_regs_fifo2_out_ready);
 assign card1_card_core1_regs_fifo2_dda_advance = (card1_card_core1_regs_fifo2_tick && card1_card_core1_regs_fifo2_out_ready && card1_card_core1_regs_fifo2_motion_run);
-assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_seq_busy || (card1_card_core1_regs_fifo2_direct_busy != 0) || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
 assign card1_card_core1_regs_fifo2_busy_but_loads = (card1_card_core1_regs_fifo2_seq_busy || (card1_card_core1_regs_fifo2_direct_running != 0) || card1_card_core1_regs_fifo2_out_active || card1_card_core1_regs_fifo2_dda_busy || card1_card_core1_regs_fifo2_home_busy);
+assign card1_card_core1_regs_fifo2_any_busy = (card1_card_core1_regs_fifo2_busy_but_loads || (card1_card_core1_regs_fifo2_direct_busy != 0));
 
 
 
@@ -8253,39 +8262,45 @@ assign card1_card_core1_regs_fifo2_requests_dir_y = card1_card_core1_regs_fifo2_
 assign card1_card_core1_regs_fifo2_level_wide = {6'h0, card1_card_core1_regs_fifo2_fifo_level};
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word101__store70_word_value, card1_card_core1_regs_fifo2_reg_word99_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_conditioning_active[0], card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source4_choose_source
     card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_reg_word99_shown;
     card1_card_core1_regs_fifo2_direct_pulse4_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
     if (card1_card_core1_regs_fifo2_home_busy) begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
+        card1_card_core1_regs_fifo2_pulse_source4_command_asked = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 0));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse4_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_pulse_source4_command_asked = (card1_card_core1_regs_fifo2_reg_word101__store70_word_strobe && (!card1_card_core1_regs_fifo2_conditioning_active[0]));
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = $signed(card1_card_core1_regs_fifo2_reg_word101__store70_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse4_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask[0]);
+        card1_card_core1_regs_fifo2_pulse_source4_command_asked = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask[0]);
         card1_card_core1_regs_fifo2_direct_pulse4_command_count = card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_x;
     end
 end
 
 
-always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
+always @(card1_card_core1_regs_fifo2_homing2_port_count, card1_card_core1_regs_fifo2_seq_load, card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4], card1_card_core1_regs_fifo2_homing2_port_retarget, card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask, card1_card_core1_regs_fifo2_homing2_port_period, card1_card_core1_regs_fifo2_reg_word102__store71_word_value, card1_card_core1_regs_fifo2_reg_word100_shown, card1_card_core1_regs_fifo2_homing2_port_load, card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y, card1_card_core1_regs_fifo2_direct_mode, card1_card_core1_regs_fifo2_home_busy, card1_card_core1_regs_fifo2_conditioning_active[0], card1_card_core1_regs_fifo2_halt) begin: card1_card_core1_regs_fifo2_pulse_source5_choose_source
     card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_reg_word100_shown;
     card1_card_core1_regs_fifo2_direct_pulse5_command_retarget = (card1_card_core1_regs_fifo2_home_busy && card1_card_core1_regs_fifo2_homing2_port_retarget && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
     if (card1_card_core1_regs_fifo2_home_busy) begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
+        card1_card_core1_regs_fifo2_pulse_source5_command_asked = (card1_card_core1_regs_fifo2_homing2_port_load && (card1_card_core1_regs_fifo2_reg_word113_shown[7-1:4] == 1));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_homing2_port_count;
         card1_card_core1_regs_fifo2_direct_pulse5_command_period = card1_card_core1_regs_fifo2_homing2_port_period;
     end
     else if (card1_card_core1_regs_fifo2_direct_mode) begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe && (!card1_card_core1_regs_fifo2_halt));
+        card1_card_core1_regs_fifo2_pulse_source5_command_asked = (card1_card_core1_regs_fifo2_reg_word102__store71_word_strobe && (!card1_card_core1_regs_fifo2_conditioning_active[0]));
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = $signed(card1_card_core1_regs_fifo2_reg_word102__store71_word_value);
     end
     else begin
         card1_card_core1_regs_fifo2_direct_pulse5_command_load = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask[1]);
+        card1_card_core1_regs_fifo2_pulse_source5_command_asked = (card1_card_core1_regs_fifo2_seq_load && card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_mask[1]);
         card1_card_core1_regs_fifo2_direct_pulse5_command_count = card1_card_core1_regs_fifo2_sequencer2_two_axis_operands2_pulses_count_y;
     end
 end

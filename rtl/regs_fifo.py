@@ -158,6 +158,7 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     direct_out = [StepRequest(ready=direct_ready) for _ in axis_names]
     direct_busy = ConcatSignal(*reversed([d.busy for d in direct]))
     direct_running = ConcatSignal(*reversed([d.running for d in direct]))
+    direct_asked = ConcatSignal(*reversed([d.asked for d in direct]))
     direct_request, direct_dir = [o.step for o in direct_out], [o.dir for o in direct_out]
     axis_regs = AxisBlock(axes, len(local.addr), addr=local.addr, read=io_read, positions=position,
                           pos_words=[hw[f"POS_{name}"] for name in axis_names[2:]])
@@ -345,14 +346,15 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
 
     @always_comb
     def pulse_activity():
-        pulse_busy.next = direct_busy != 0
+        # the sequencer's and homing's: the loads as asked (a latched stop clears both)
+        pulse_busy.next = direct_running != 0 or direct_asked != 0
         # a step request is not yet in the pulse queue in its own clock, nor seen
         # in out_active_before in the next: both clocks are covered by the requests
         outputs_busy.next = requested != 0 or requested_before or out_active_before
         hold.next = not out_ready
         dda.advance.next = tick and out_ready and motion_run
-        any_busy.next = seq_busy or direct_busy != 0 or out_active or dda.busy or home.busy
         busy_but_loads.next = seq_busy or direct_running != 0 or out_active or dda.busy or home.busy
+        any_busy.next = busy_but_loads or direct_busy != 0
 
     @always_comb
     def merge_requests():
@@ -367,7 +369,8 @@ def regs_fifo(clock, reset, local, dda, axes_cmd, steps, pins, irq, core_clear, 
     home_axis = hw["HOME"](index.lsb + index.width, index.lsb)   # the homed axis, as HOME reads it
     for axis, name in enumerate(axis_names):
         units.append(pulse_source(direct_mode, strobes[f"PULSE_COUNT_{name}"], values[f"PULSE_COUNT_{name}"], halt,
-                                  values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis, direct[axis], axis=axis))
+                                  conditioning.active(estop), values[f"PULSE_PERIOD_{name}"], pulses, home, home_axis,
+                                  direct[axis], axis=axis))
         if axis >= 2:   # X's and Y's: merge_requests
             units.append(axis_request(steps.step(axis), steps.dir(axis), direct_out[axis], requests.step(axis),
                                        requests.dir(axis)))

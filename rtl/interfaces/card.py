@@ -325,7 +325,9 @@ class FeedPort:
 
 class DirectPulseCommand:
     """One axis's direct pulses, seen from the card: it drives ``load`` (one
-    clock) with ``count`` (signed pulses, the sign their direction),
+    clock) with ``count`` (signed pulses, the sign their direction) and
+    ``asked`` (``load`` as the sequencer and homing count it: the E-stop in
+    place of the guard's halt, see ``rtl/regs/pulse_source.py``),
     ``period`` (clocks between pulses, PULSE_PERIOD_*), ``clear`` (soft
     reset) and ``retarget`` (one clock: ``count``'s size becomes the pulses
     still to go, in the direction under way, the period's timing goes on:
@@ -339,7 +341,7 @@ class DirectPulseCommand:
         adopt(self, given, load=Signal(bool(0)), count=Signal(intbv(0, **bounds)),
                period=Signal(intbv(period.reset)[period.width:]), clear=Signal(bool(0)), retarget=Signal(bool(0)),
                remaining=Signal(intbv(0)[PULSE_COUNT_BITS:]), busy=Signal(bool(0)),
-               running=Signal(bool(0)))
+               running=Signal(bool(0)), asked=Signal(bool(0)))
 
 
 class StepRequest:

@@ -38,6 +38,10 @@ def direct_pulse(clock, reset, command, out):
     # that the 24-bit zero test of ``count`` (behind the source's selection)
     # is not in series with the carry chain; a retarget of 0 then writes 0.
     may_step = Signal(bool(0))
+    # a request could go at the coming edge (no clear, the period's wait over,
+    # the outputs ready): with a retarget and no load that is may_step, so the
+    # adder's operands take it without may_step's retarget and pending terms
+    can_step = Signal(bool(0))
     # One adder per counter: remaining takes |count| (count ^ sign + sign) on
     # a load and remaining - 1 on a request; gap takes period - 1 on a
     # request and gap - 1 while waiting.
@@ -56,27 +60,27 @@ def direct_pulse(clock, reset, command, out):
 
     @always_comb
     def decide():
-        may_step.next = (not command.clear and not command.load and not waiting and out.ready
-                         and (command.retarget or pending))
+        can_step.next = not command.clear and not waiting and out.ready
+        may_step.next = can_step and not command.load and (command.retarget or pending)
         # a retarget of 0 stops at once, a request in its clock included
         stepping.next = may_step and not (command.retarget and command.count == 0)
 
     @always_comb
     def count_operands():
         # |count| on a load or a retarget (less one with a request in the retarget's clock,
-        # or one that may come: see may_step), remaining - 1 otherwise
+        # or one that may come: see can_step), remaining - 1 otherwise
         if not command.load and not command.retarget:
             count_operand.next = command.remaining
             count_addend.next = all_ones
         elif command.count < 0:
             count_operand.next = ~command.count[count_bits:]
             count_addend.next = 1
-            if may_step:
+            if can_step and not command.load:
                 count_addend.next = 0
         else:
             count_operand.next = command.count[count_bits:]
             count_addend.next = 0
-            if may_step:
+            if can_step and not command.load:
                 count_addend.next = all_ones
 
     @always_comb
