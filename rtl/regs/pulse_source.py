@@ -75,5 +75,6 @@ def pulse_source_ports(axis=0):
     period = DirectPulseCommand().period
     return dict(direct_mode=Signal(bool(0)), count_strobe=Signal(bool(0)),
                 count_value=Signal(intbv(0)[len(DirectPulseCommand().remaining):]), halt=Signal(bool(0)),
-                estop=Signal(bool(0)), pulse_period=Signal(intbv(int(period))[len(period):]), pulses=PulseCommand(max(2, axis + 1)),
+                estop=Signal(bool(0)), pulse_period=Signal(intbv(int(period))[len(period):]),
+                pulses=PulseCommand(max(2, axis + 1)),
                 home=Homing(), home_axis=Signal(intbv(0)[1:]), command=DirectPulseCommand(), axis=axis)
